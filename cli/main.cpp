@@ -1,0 +1,32 @@
+// sigmatau: Allan-family deviations, noise terms, data-sheet checks and filter tuning for IMUs.
+// Exit codes: 0 ok, 1 a compliance check failed, 2 bad input or usage, 3 internal error.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "sigmatau/error.hpp"
+#include "verbs.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"sigmatau: how noisy is this IMU, does it meet its data sheet, and what goes into "
+               "the filter"};
+  app.set_version_flag("--version", std::string("sigmatau ") + SIGMATAU_VERSION);
+  app.require_subcommand(1);
+  // Registration list: one line per verb.
+  sigmatau::cli::add_adev_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const sigmatau::Error& e) {
+    std::cerr << "sigmatau: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "sigmatau: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,69 @@
+#pragma once
+/// \file confidence.hpp
+/// Confidence intervals for Allan-family deviations: power-law noise identification, equivalent
+/// degrees of freedom and chi-squared bounds.
+///
+/// References:
+///  - W. J. Riley, C. A. Greenhall, "Power law noise identification using the lag 1
+///    autocorrelation", 18th EFTF, 2004 (lag-1 ACF method).
+///  - D. W. Allan, J. A. Barnes, B1 bias function (Barnes 1974), and NIST SP 1065 sec. 5.6
+///    (B1 ratio and R(n) methods, used when too few points remain for the ACF).
+///  - C. A. Greenhall, W. J. Riley, "Uncertainty of stability variances based on finite
+///    differences", 35th PTTI, 2003 (EDF algorithm).
+///  - NIST SP 1065 Table 7 (TOTDEV EDF), eq. (45) (chi-squared interval).
+///
+/// alpha is the exponent of the fractional-frequency (rate) PSD S_y(f) ~ f^alpha:
+///  +2 white PM (quantization), +1 flicker PM, 0 white FM (angle random walk),
+///  -1 flicker FM (bias instability), -2 random-walk FM (rate random walk).
+
+#include <cstdint>
+
+#include "sigmatau/allan.hpp"
+#include "sigmatau/phase_series.hpp"
+
+namespace sigmatau {
+
+/// Identified power-law noise at one averaging factor.
+struct NoiseIdentification {
+  int alpha = 0;             ///< integer exponent in [-2, 2]
+  enum class Method { lag1_acf, b1_ratio, assumed } method = Method::lag1_acf;
+};
+
+/// Identifies the dominant power-law noise at averaging factor m the way Stable32 does: lag-1
+/// autocorrelation of the series averaged (rate) or decimated (phase) to m, differenced until
+/// the lag-1 ACF is below 0.25 (needs at least ~30 points); the B1 ratio (with R(n) to separate
+/// white and flicker PM) where fewer points remain. The statistic matters for mdev/tdev/hdev
+/// (see Stable32 "Noise identification").
+NoiseIdentification identify_noise(const PhaseSeries& series, Statistic statistic,
+                                   std::int64_t m);
+
+/// Greenhall's EDF for a variance of difference order d (2 Allan, 3 Hadamard), modified (F = 1)
+/// or not (F = m), overlapping (S = m) or not (S = 1), at averaging factor m on N phase points.
+/// Returns NaN when the arguments are outside the algorithm's domain.
+double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t F, std::int64_t S,
+                     std::int64_t n_phase_points);
+
+/// EDF of one statistic at averaging factor m: Greenhall for adev/oadev/mdev/tdev/hdev/ohdev,
+/// SP 1065 Table 7 for totdev.
+double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
+                      std::int64_t n_phase_points);
+
+/// Chi-squared confidence bounds for a deviation `dev` with `edf` degrees of freedom at two-sided
+/// confidence `confidence` (e.g. 0.683): sigma^2 edf / chi2_{(1+p)/2}(edf) and
+/// sigma^2 edf / chi2_{(1-p)/2}(edf) (SP 1065 eq. 45), returned as deviations.
+struct Interval {
+  double low = 0;
+  double high = 0;
+};
+Interval chi_squared_interval(double dev, double edf, double confidence);
+
+/// Everything above for one point: identified alpha, EDF and the interval at `confidence`.
+struct ConfidencePoint {
+  NoiseIdentification noise;
+  double edf = 0;
+  Interval interval;
+};
+ConfidencePoint confidence_for(const PhaseSeries& series, Statistic statistic,
+                               const DeviationPoint& point, double confidence);
+
+}  // namespace sigmatau
