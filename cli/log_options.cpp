@@ -1,0 +1,86 @@
+#include "log_options.hpp"
+
+#include <unistd.h>
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau::cli {
+
+std::vector<std::string> split_list(const std::string& text, const std::string& option) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    std::string item = text.substr(start, end - start);
+    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
+    while (!item.empty() && item.back() == ' ') item.pop_back();
+    if (item.empty()) throw Error(option + ": empty item in list \"" + text + "\"");
+    items.push_back(item);
+    start = end + 1;
+  }
+  return items;
+}
+
+bool stderr_is_tty() { return ::isatty(STDERR_FILENO) == 1; }
+
+void add_log_options(CLI::App& command, LogArguments& args) {
+  command.add_option("INPUT", args.input, "log file (CSV/TSV/whitespace text, .gz, raw binary), - for stdin")
+      ->required();
+  command.add_option("--columns", args.columns,
+                     "channels to analyse: header names or 0-based indices, comma-separated "
+                     "(default: every numeric column except the time column)");
+  command.add_option("--time-column", args.time_column, "time stamp column (name or index)");
+  command.add_option("--time-unit", args.time_unit, "unit of the time column: s|ms|us|ns")
+      ->capture_default_str();
+  command.add_option("--rate", args.rate_hz,
+                     "sample rate [Hz] (default: measured from the time column)");
+  command.add_option("--kind", args.kind,
+                     "what the values are: rate (e.g. deg/s, m/s^2), increment (delta angle or "
+                     "velocity per sample), phase (integrated angle, or clock phase in s)")
+      ->capture_default_str();
+  command.add_option("--unit", args.unit,
+                     "unit of the values, e.g. deg/s, rad/s, mdps, g, m/s^2, deg, s "
+                     "(default: taken as they are)");
+  command.add_option("--binary", args.binary, "raw interleaved binary samples: i16|i32|f32|f64");
+  command.add_option("--channels", args.channels, "number of interleaved channels (--binary)");
+  command.add_flag("--big-endian", args.big_endian, "binary samples are big-endian");
+  command.add_option("--skip-bytes", args.skip_bytes, "bytes of header to skip (--binary)");
+}
+
+LoadedChannels load_channels(const LogArguments& args) {
+  LogOptions options;
+  options.path = args.input;
+  if (!args.columns.empty()) options.columns = split_list(args.columns, "--columns");
+  options.time_column = args.time_column;
+  options.time_unit = parse_time_unit(args.time_unit);
+  if (!args.binary.empty()) {
+    options.binary = parse_binary_format(args.binary);
+    if (!(args.channels > 0)) throw Error("--binary needs --channels C (C >= 1)");
+    if (!args.time_column.empty()) throw Error("--time-column is for text logs; use --rate with --binary");
+    options.binary_channels = args.channels;
+    options.big_endian = args.big_endian;
+    if (args.skip_bytes < 0) throw Error("--skip-bytes must be >= 0");
+    options.skip_bytes = args.skip_bytes;
+  } else if (args.channels != 0 || args.big_endian || args.skip_bytes != 0) {
+    throw Error("--channels, --big-endian and --skip-bytes are for --binary input");
+  }
+
+  LoadedChannels loaded;
+  loaded.kind = parse_data_kind(args.kind);
+  loaded.unit = args.unit;
+  if (!args.unit.empty()) {
+    const Unit unit = parse_unit(args.unit);
+    loaded.to_si = unit.factor;
+    loaded.dimension = unit.dimension;
+  }
+  loaded.log = read_log(options);
+  loaded.rate_hz = resolve_rate_hz(args.rate_hz, loaded.log.timing, args.input);
+  if (loaded.to_si != 1.0) {
+    for (auto& channel : loaded.log.channels) {
+      for (double& v : channel) v *= loaded.to_si;
+    }
+  }
+  return loaded;
+}
+
+}  // namespace sigmatau::cli

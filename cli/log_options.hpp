@@ -1,0 +1,51 @@
+#pragma once
+// The options every log-reading verb shares (adev, psd, fit, analyze, calibrate), and turning
+// them into channels in SI.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sigmatau/log_reader.hpp"
+#include "sigmatau/phase_series.hpp"
+#include "sigmatau/units.hpp"
+
+namespace sigmatau::cli {
+
+struct LogArguments {
+  std::string input;
+  std::string columns;       // comma-separated names or indices
+  std::string time_column;
+  std::string time_unit = "s";
+  std::optional<double> rate_hz;
+  std::string kind = "rate";
+  std::string unit;          // input unit; empty: numbers are taken as they are
+  std::string binary;        // i16|i32|f32|f64
+  int channels = 0;
+  bool big_endian = false;
+  std::int64_t skip_bytes = 0;
+};
+
+/// Adds INPUT and the log options to `command`.
+void add_log_options(CLI::App& command, LogArguments& args);
+
+/// A log read into memory and converted to SI (when --unit was given).
+struct LoadedChannels {
+  Log log;
+  double rate_hz = 0;
+  DataKind kind = DataKind::rate;
+  std::string unit;              // the input unit as given ("" = as read)
+  double to_si = 1;              // input value * to_si = SI value
+  Dimension dimension;           // of the input unit
+};
+
+LoadedChannels load_channels(const LogArguments& args);
+
+/// Splits "a,b,c" (empty fields are an Error naming the option).
+std::vector<std::string> split_list(const std::string& text, const std::string& option);
+
+/// Whether stderr is a terminal (progress is shown only then).
+bool stderr_is_tty();
+
+}  // namespace sigmatau::cli

@@ -1,0 +1,40 @@
+# CLI regression cases for `sigmatau adev` (see sigmatau_cli_test in tests/CMakeLists.txt).
+set(example ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz)
+set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_adev)
+file(MAKE_DIRECTORY ${out_dir})
+
+sigmatau_cli_test(NAME cli_adev_table EXIT 0
+  STDOUT "gx  oadev  \\[deg/h\\].*tau\\[s\\].*ci_low"
+  ARGS adev ${example} --time-column t --unit deg/s --out-unit deg/h)
+
+# JSON to a file, then a second run must refuse to overwrite it without --force.
+add_test(NAME cli_adev_json_fresh COMMAND ${CMAKE_COMMAND} -E rm -f ${out_dir}/adev.json)
+sigmatau_cli_test(NAME cli_adev_json EXIT 0
+  ARGS adev ${example} --time-column t --unit deg/s --format json -o ${out_dir}/adev.json)
+set_tests_properties(cli_adev_json PROPERTIES DEPENDS cli_adev_json_fresh)
+sigmatau_cli_test(NAME cli_adev_no_overwrite EXIT 2 STDERR "exists; use --force"
+  ARGS adev ${example} --time-column t --format json -o ${out_dir}/adev.json)
+set_tests_properties(cli_adev_no_overwrite PROPERTIES DEPENDS cli_adev_json)
+sigmatau_cli_test(NAME cli_adev_force EXIT 0
+  ARGS adev ${example} --time-column t --format json -o ${out_dir}/adev.json --force)
+set_tests_properties(cli_adev_force PROPERTIES DEPENDS cli_adev_no_overwrite)
+
+sigmatau_cli_test(NAME cli_adev_stdin EXIT 0 STDIN ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv
+  STDOUT "\"channel\": \"gy\"" ARGS adev - --time-column t --format json)
+
+sigmatau_cli_test(NAME cli_adev_no_rate EXIT 2 STDERR "rate"
+  NO_FILE ${out_dir}/no_rate.json
+  ARGS adev ${example} --columns gx --format json -o ${out_dir}/no_rate.json)
+sigmatau_cli_test(NAME cli_adev_unknown_statistic EXIT 2 STDERR "madev"
+  ARGS adev ${example} --time-column t --stat oadev,madev)
+sigmatau_cli_test(NAME cli_adev_bad_taus EXIT 2 STDERR "--taus|tau"
+  ARGS adev ${example} --time-column t --taus sometimes)
+sigmatau_cli_test(NAME cli_adev_out_unit_dimension EXIT 2 STDERR "m/s\\^2"
+  ARGS adev ${example} --time-column t --unit deg/s --out-unit m/s^2)
+sigmatau_cli_test(NAME cli_adev_out_unit_needs_unit EXIT 2 STDERR "--out-unit needs --unit"
+  ARGS adev ${example} --time-column t --out-unit deg/h)
+sigmatau_cli_test(NAME cli_adev_bad_ci EXIT 2 STDERR "confidence"
+  ARGS adev ${example} --time-column t --ci 1.5)
+sigmatau_cli_test(NAME cli_adev_missing_file EXIT 2 STDERR "no_such_file.csv"
+  ARGS adev ${out_dir}/no_such_file.csv --rate 100)
+sigmatau_cli_test(NAME cli_adev_usage EXIT 2 ARGS adev)
