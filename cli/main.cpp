@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Registration list: one line per verb.
   sigmatau::cli::add_adev_command(app);
+  sigmatau::cli::add_psd_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,6 +6,7 @@
 namespace sigmatau::cli {
 
 void add_adev_command(CLI::App& app);
+void add_psd_command(CLI::App& app);
 void add_units_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 

@@ -36,10 +36,19 @@ class ParseError : public Error {
  private:
   static std::string format(const std::string& file, std::int64_t line, std::int64_t column,
                             const std::string& message) {
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string s = file;
-    if (line > 0) s += ":" + std::to_string(line);
-    if (line > 0 && column > 0) s += ":" + std::to_string(column);
-    return s + ": " + message;
+    if (line > 0) {
+      s += ':';
+      s += std::to_string(line);
+      if (column > 0) {
+        s += ':';
+        s += std::to_string(column);
+      }
+    }
+    s += ": ";
+    s += message;
+    return s;
   }
   std::string file_;
   std::int64_t line_;

@@ -1,0 +1,236 @@
+// `sigmatau psd`: Welch PSD of every channel and the white-noise density read from it.
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "log_options.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/psd.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct PsdArguments {
+  LogArguments log;
+  std::int64_t segment = 0;
+  double overlap = 0.5;
+  std::string window = "hann";
+  std::string detrend = "mean";
+  std::string band;
+  int bins_per_decade = 0;
+  double ci = 0.683;
+  std::string format = "table";
+  std::string output;
+  std::string out_unit;
+  bool force = false;
+};
+
+/// The rate series of a channel (in SI when --unit was given): increments / tau0, phase
+/// differenced / tau0.
+std::vector<double> rate_samples(std::vector<double> values, DataKind kind, double rate_hz) {
+  if (kind == DataKind::increment) {
+    for (double& v : values) v *= rate_hz;
+  } else if (kind == DataKind::phase) {
+    if (values.size() < 2) throw Error("phase input needs at least two samples");
+    for (std::size_t i = 0; i + 1 < values.size(); ++i) values[i] = (values[i + 1] - values[i]) * rate_hz;
+    values.pop_back();
+  }
+  return values;
+}
+
+std::optional<std::pair<double, double>> parse_band(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const auto colon = text.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    std::size_t used1 = 0, used2 = 0;
+    const double f1 = std::stod(text.substr(0, colon), &used1);
+    const double f2 = std::stod(text.substr(colon + 1), &used2);
+    if (used1 != colon || used2 != text.size() - colon - 1) throw std::invalid_argument("trailing");
+    return std::make_pair(f1, f2);
+  } catch (const std::exception&) {
+    throw Error("--band expects F1:F2 in Hz (e.g. 1:10), got \"" + text + "\"");
+  }
+}
+
+struct DensityUnit {
+  std::string psd_label;      // unit of the PSD values
+  std::string density_label;  // unit of the noise density
+  double density_from_si = 1; // printed density = computed * factor
+  double psd_from_si = 1;
+};
+
+DensityUnit density_unit(const LoadedChannels& loaded, const std::string& out_unit) {
+  DensityUnit u;
+  if (loaded.unit.empty()) {
+    if (!out_unit.empty()) throw Error("--out-unit needs --unit (the unit of the input values)");
+    u.psd_label = "(input unit)^2/Hz";
+    u.density_label = "(input unit)/sqrt(Hz)";
+    return u;
+  }
+  Dimension rate_dimension = loaded.dimension;
+  std::string rate_label = loaded.unit;
+  double rate_from_si = 1.0 / loaded.to_si;
+  if (loaded.kind != DataKind::rate) {
+    rate_dimension.time2 -= 2;
+    rate_label = "(" + loaded.unit + ")/s";
+  }
+  u.psd_label = "(" + rate_label + ")^2/Hz";
+  u.psd_from_si = rate_from_si * rate_from_si;
+  if (out_unit.empty()) {
+    u.density_label = rate_label + "/sqrt(Hz)";
+    u.density_from_si = rate_from_si;
+    return u;
+  }
+  Dimension density_dimension = rate_dimension;
+  density_dimension.time2 += 1;  // x sqrt(s) = / sqrt(Hz)
+  const Unit unit = parse_unit(out_unit);
+  if (!(unit.dimension == density_dimension)) {
+    throw Error("--out-unit " + out_unit + " is " + to_string(unit.dimension) +
+                ", but a noise density of " + rate_label + " is " + to_string(density_dimension));
+  }
+  u.density_label = out_unit;
+  u.density_from_si = 1.0 / unit.factor;
+  return u;
+}
+
+void run_psd(const PsdArguments& args) {
+  WelchOptions options;
+  options.segment_length = args.segment;
+  options.overlap = args.overlap;
+  options.window = parse_window(args.window);
+  options.detrend = parse_detrend(args.detrend);
+  const auto band = parse_band(args.band);
+  if (args.bins_per_decade < 0) throw Error("--bins-per-decade must be >= 0");
+  if (args.format != "table" && args.format != "csv" && args.format != "json") {
+    throw Error("--format must be table, csv or json, got \"" + args.format + "\"");
+  }
+  if (!args.output.empty()) check_can_write(args.output, args.force);
+
+  LoadedChannels loaded = load_channels(args.log);
+  const DensityUnit unit = density_unit(loaded, args.out_unit);
+
+  std::vector<PsdCurve> curves;
+  std::vector<NoiseDensity> densities;
+  for (auto& channel : loaded.log.channels) {
+    const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
+    PsdCurve psd = welch_psd(rate, loaded.rate_hz, options);
+    densities.push_back(noise_density(psd, band, args.ci));
+    curves.push_back(args.bins_per_decade > 0 ? log_binned(psd, args.bins_per_decade) : std::move(psd));
+  }
+
+  std::ostringstream out;
+  if (args.format == "json") {
+    nlohmann::json doc;
+    doc["tool"] = "sigmatau";
+    doc["version"] = SIGMATAU_VERSION;
+    doc["input"] = {{"path", loaded.log.path}, {"rate_hz", loaded.rate_hz},
+                    {"kind", std::string(to_string(loaded.kind))}, {"unit", loaded.unit}};
+    doc["results"] = nlohmann::json::array();
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const auto& psd = curves[c];
+      const auto& nd = densities[c];
+      std::vector<double> values;
+      for (double p : psd.psd) values.push_back(p * unit.psd_from_si);
+      doc["results"].push_back(
+          {{"channel", loaded.log.channel_names[c]},
+           {"unit", unit.psd_label},
+           {"convention", "one-sided"},
+           {"window", std::string(to_string(psd.window))},
+           {"segment_length", psd.segment_length},
+           {"segments", psd.segments},
+           {"overlap", psd.overlap},
+           {"frequency", psd.frequency_hz},
+           {"psd", values},
+           {"edf", psd.edf},
+           {"noise_density",
+            {{"value", nd.value * unit.density_from_si},
+             {"ci_low", nd.ci_low * unit.density_from_si},
+             {"ci_high", nd.ci_high * unit.density_from_si},
+             {"confidence", args.ci},
+             {"unit", unit.density_label},
+             {"convention", "N = sqrt(two-sided PSD level): data-sheet / Kalibr / Allan N"},
+             {"band_hz", {nd.band_low_hz, nd.band_high_hz}},
+             {"band_detected", nd.band_detected},
+             {"edf", nd.edf},
+             {"one_sided_asd", nd.one_sided_asd * unit.density_from_si}}}});
+    }
+    out << doc.dump(1) << "\n";
+  } else if (args.format == "csv") {
+    out << "channel,frequency_hz,psd,edf,unit\n";
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      for (std::size_t k = 0; k < curves[c].psd.size(); ++k) {
+        char line[128];
+        std::snprintf(line, sizeof line, "%.9g,%.9e,%.6g,", curves[c].frequency_hz[k],
+                      curves[c].psd[k] * unit.psd_from_si, curves[c].edf[k]);
+        out << loaded.log.channel_names[c] << ',' << line << unit.psd_label << '\n';
+      }
+    }
+  } else {
+    out << "# " << loaded.log.path << ": rate " << loaded.rate_hz << " Hz; one-sided PSD; noise density N = sqrt(two-sided level) (data-sheet/Kalibr convention), one-sided ASD = sqrt(2) N\n";
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const auto& nd = densities[c];
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "%-8s N = %.5g [%.5g, %.5g] %s (%.1f%%)  band %.4g-%.4g Hz%s  one-sided ASD %.5g\n",
+                    loaded.log.channel_names[c].c_str(), nd.value * unit.density_from_si,
+                    nd.ci_low * unit.density_from_si, nd.ci_high * unit.density_from_si,
+                    unit.density_label.c_str(), args.ci * 100, nd.band_low_hz, nd.band_high_hz,
+                    nd.band_detected ? " (auto)" : "", nd.one_sided_asd * unit.density_from_si);
+      out << line;
+    }
+    if (args.bins_per_decade > 0) {
+      for (std::size_t c = 0; c < curves.size(); ++c) {
+        out << "\n# " << loaded.log.channel_names[c] << "  PSD [" << unit.psd_label << "]\n";
+        for (std::size_t k = 0; k < curves[c].psd.size(); ++k) {
+          char line[96];
+          std::snprintf(line, sizeof line, "%12.5g %14.6e %10.4g\n", curves[c].frequency_hz[k],
+                        curves[c].psd[k] * unit.psd_from_si, curves[c].edf[k]);
+          out << line;
+        }
+      }
+    }
+  }
+  if (args.output.empty()) {
+    std::cout << out.str();
+  } else {
+    write_file_atomically(args.output, out.str(), args.force);
+  }
+}
+
+}  // namespace
+
+void add_psd_command(CLI::App& app) {
+  auto args = std::make_shared<PsdArguments>();
+  CLI::App* command = app.add_subcommand(
+      "psd", "Welch power spectral density (one-sided) and the white-noise density read from it");
+  add_log_options(*command, args->log);
+  command->add_option("--segment", args->segment,
+                      "samples per segment (default: largest power of two <= samples/8)");
+  command->add_option("--overlap", args->overlap, "overlap of consecutive segments, 0..<1")
+      ->capture_default_str();
+  command->add_option("--window", args->window, "hann | blackman-harris | rectangular")
+      ->capture_default_str();
+  command->add_option("--detrend", args->detrend, "per segment: none | mean | linear")
+      ->capture_default_str();
+  command->add_option("--band", args->band,
+                      "F1:F2 [Hz] band for the noise density (default: widest flat band)");
+  command->add_option("--bins-per-decade", args->bins_per_decade,
+                      "average the PSD into log-spaced bins (0: every FFT bin)")
+      ->capture_default_str();
+  command->add_option("--ci", args->ci, "confidence level of the noise-density interval")
+      ->capture_default_str();
+  command->add_option("--format", args->format, "table | csv | json")->capture_default_str();
+  command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
+  command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->add_option("--out-unit", args->out_unit,
+                      "unit of the noise density, e.g. deg/s/sqrt(Hz), deg/sqrt(h), ug/sqrt(Hz)");
+  command->callback([args] { run_psd(*args); });
+}
+
+}  // namespace sigmatau::cli
