@@ -72,11 +72,11 @@ std::string format_number(double v) {
   return buffer;
 }
 
-std::string render_table(const LoadedChannels& loaded, const std::vector<Statistic>& stats,
+std::string render_table(const LoadedChannels& loaded, std::size_t samples, const std::vector<Statistic>& stats,
                          const std::vector<std::vector<AllanCurve>>& curves,
                          const OutputUnit& unit) {
   std::ostringstream out;
-  out << "# " << loaded.log.path << ": " << loaded.log.channels.front().size() << " samples at "
+  out << "# " << loaded.log.path << ": " << samples << " samples at "
       << loaded.rate_hz << " Hz, kind " << to_string(loaded.kind) << "\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
@@ -126,7 +126,7 @@ nlohmann::json json_number(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-std::string render_json(const LoadedChannels& loaded, const std::vector<Statistic>& stats,
+std::string render_json(const LoadedChannels& loaded, std::size_t samples, const std::vector<Statistic>& stats,
                         const std::vector<std::vector<AllanCurve>>& curves,
                         const OutputUnit& unit) {
   nlohmann::json doc;
@@ -134,7 +134,7 @@ std::string render_json(const LoadedChannels& loaded, const std::vector<Statisti
   doc["version"] = SIGMATAU_VERSION;
   doc["input"] = {{"path", loaded.log.path},
                   {"rate_hz", loaded.rate_hz},
-                  {"samples", loaded.log.channels.front().size()},
+                  {"samples", samples},
                   {"kind", std::string(to_string(loaded.kind))},
                   {"unit", loaded.unit}};
   if (loaded.log.timing.has_time) {
@@ -183,19 +183,21 @@ void run_adev(const AdevArguments& args) {
   }
   if (!args.output.empty()) check_can_write(args.output, args.force);
 
-  const LoadedChannels loaded = load_channels(args.log);
+  LoadedChannels loaded = load_channels(args.log);
   const OutputUnit unit = output_unit(loaded, args.out_unit);
+  const auto samples = loaded.log.channels.front().size();
   std::vector<PhaseSeries> series;
   series.reserve(loaded.log.channels.size());
-  for (const auto& channel : loaded.log.channels) {
+  for (auto& channel : loaded.log.channels) {
     series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+    std::vector<double>().swap(channel);  // the raw samples are no longer needed
   }
   const auto curves = compute_allan_curves(series, stats, taus, args.ci, args.threads);
 
   std::string text;
-  if (args.format == "table") text = render_table(loaded, stats, curves, unit);
+  if (args.format == "table") text = render_table(loaded, samples, stats, curves, unit);
   if (args.format == "csv") text = render_csv(loaded, stats, curves, unit);
-  if (args.format == "json") text = render_json(loaded, stats, curves, unit);
+  if (args.format == "json") text = render_json(loaded, samples, stats, curves, unit);
   if (args.output.empty()) {
     std::cout << text;
   } else {
