@@ -1,6 +1,7 @@
 // `sigmatau adev`: Allan-family deviations of every channel of a log, with confidence intervals.
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
+#include "sigmatau/plot.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -25,6 +27,7 @@ struct AdevArguments {
   std::string out_unit;
   unsigned threads = 0;
   bool force = false;
+  std::string plot;
 };
 
 /// How deviations (computed in SI, or in the input's own unit without --unit) are printed.
@@ -182,6 +185,10 @@ void run_adev(const AdevArguments& args) {
     throw Error("--format must be table, csv or json, got \"" + args.format + "\"");
   }
   if (!args.output.empty()) check_can_write(args.output, args.force);
+  if (!args.plot.empty()) {
+    plot_format_for(args.plot);
+    check_can_write(args.plot, args.force);
+  }
 
   LoadedChannels loaded = load_channels(args.log);
   const OutputUnit unit = output_unit(loaded, args.out_unit);
@@ -202,6 +209,27 @@ void run_adev(const AdevArguments& args) {
     std::cout << text;
   } else {
     write_file_atomically(args.output, text, args.force);
+  }
+  if (!args.plot.empty()) {
+    // The first statistic asked, every channel, with its confidence band.
+    const auto u = unit_for(stats.front(), unit);
+    DeviationPlot plot;
+    plot.title = loaded.log.path;
+    std::string name(to_string(stats.front()));
+    for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    plot.y_label = name + " [" + (u.label.empty() ? "input unit" : u.label) + "]";
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      PlotCurve curve;
+      curve.name = loaded.log.channel_names[c];
+      for (const auto& p : curves[c].front().points) {
+        curve.x.push_back(p.value.tau_s);
+        curve.y.push_back(p.value.dev * u.from_si);
+        curve.low.push_back(p.confidence.interval.low * u.from_si);
+        curve.high.push_back(p.confidence.interval.high * u.from_si);
+      }
+      plot.curves.push_back(std::move(curve));
+    }
+    render_deviation_plot(plot, args.plot, args.force);
   }
 }
 
@@ -226,6 +254,8 @@ void add_adev_command(CLI::App& app) {
   command->add_flag("--force", args->force, "overwrite an existing output file");
   command->add_option("--out-unit", args->out_unit,
                       "unit of the printed deviations, e.g. deg/h (needs --unit)");
+  command->add_option("--plot", args->plot,
+                      "also plot the first statistic to FILE (.svg, .png or .pdf; needs gnuplot)");
   command->add_option("--threads", args->threads, "worker threads (0: one per core)")
       ->capture_default_str();
   command->callback([args] { run_adev(*args); });

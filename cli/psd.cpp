@@ -9,11 +9,15 @@
 #include "log_options.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
+#include "sigmatau/plot.hpp"
 #include "sigmatau/psd.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
 namespace {
+
+/// Log bins per decade of a plotted PSD: smooth enough to read, fine enough to see features.
+constexpr int kPlotBinsPerDecade = 20;
 
 struct PsdArguments {
   LogArguments log;
@@ -28,6 +32,7 @@ struct PsdArguments {
   std::string output;
   std::string out_unit;
   bool force = false;
+  std::string plot;
 };
 
 /// The rate series of a channel (in SI when --unit was given): increments / tau0, phase
@@ -111,16 +116,22 @@ void run_psd(const PsdArguments& args) {
     throw Error("--format must be table, csv or json, got \"" + args.format + "\"");
   }
   if (!args.output.empty()) check_can_write(args.output, args.force);
+  if (!args.plot.empty()) {
+    plot_format_for(args.plot);
+    check_can_write(args.plot, args.force);
+  }
 
   LoadedChannels loaded = load_channels(args.log);
   const DensityUnit unit = density_unit(loaded, args.out_unit);
 
   std::vector<PsdCurve> curves;
+  std::vector<PsdCurve> plotted;  // log-binned for the plot
   std::vector<NoiseDensity> densities;
   for (auto& channel : loaded.log.channels) {
     const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
     PsdCurve psd = welch_psd(rate, loaded.rate_hz, options);
     densities.push_back(noise_density(psd, band, args.ci));
+    if (!args.plot.empty()) plotted.push_back(log_binned(psd, kPlotBinsPerDecade));
     curves.push_back(args.bins_per_decade > 0 ? log_binned(psd, args.bins_per_decade) : std::move(psd));
   }
 
@@ -201,6 +212,21 @@ void run_psd(const PsdArguments& args) {
   } else {
     write_file_atomically(args.output, out.str(), args.force);
   }
+  if (!args.plot.empty()) {
+    SpectrumPlot plot;
+    plot.title = loaded.log.path;
+    plot.y_label = "one-sided PSD [" + unit.psd_label + "]";
+    for (std::size_t c = 0; c < plotted.size(); ++c) {
+      PlotCurve curve;
+      curve.name = loaded.log.channel_names[c];
+      curve.x = plotted[c].frequency_hz;
+      for (double p : plotted[c].psd) curve.y.push_back(p * unit.psd_from_si);
+      plot.curves.push_back(std::move(curve));
+      const double asd = densities[c].one_sided_asd;
+      plot.levels.push_back(asd * asd * unit.psd_from_si);
+    }
+    render_spectrum_plot(plot, args.plot, args.force);
+  }
 }
 
 }  // namespace
@@ -228,6 +254,7 @@ void add_psd_command(CLI::App& app) {
   command->add_option("--format", args->format, "table | csv | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->add_option("--plot", args->plot, "also plot the PSD to FILE (.svg, .png or .pdf)");
   command->add_option("--out-unit", args->out_unit,
                       "unit of the noise density, e.g. deg/s/sqrt(Hz), deg/sqrt(h), ug/sqrt(Hz)");
   command->callback([args] { run_psd(*args); });

@@ -1,0 +1,57 @@
+#pragma once
+/// \file plot.hpp
+/// Plots: sigmatau writes the data files and runs gnuplot on the editable templates in plots/
+/// (found with resource_dir("plots")). The plot file is written atomically.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sigmatau {
+
+enum class PlotFormat { svg, png, pdf };
+
+/// "svg" | "png" | "pdf"; throws Error otherwise.
+PlotFormat parse_plot_format(std::string_view text);
+/// The format a file name asks for by its extension (.svg/.png/.pdf), else Error.
+PlotFormat plot_format_for(const std::filesystem::path& path);
+
+/// One curve with an optional band (empty low/high: no band).
+struct PlotCurve {
+  std::string name;
+  std::vector<double> x;
+  std::vector<double> y;
+  std::vector<double> low;
+  std::vector<double> high;
+};
+
+/// ADEV-style plot: log-log curves of deviation against tau with confidence bands.
+struct DeviationPlot {
+  std::string title;
+  std::string y_label;  ///< with its unit, e.g. "OADEV [deg/h]"
+  std::vector<PlotCurve> curves;
+};
+
+/// PSD plot: log-log curves against frequency, with optional horizontal levels (one per curve,
+/// e.g. the noise density as a one-sided PSD level; empty: none).
+struct SpectrumPlot {
+  std::string title;
+  std::string y_label;
+  std::vector<PlotCurve> curves;
+  std::vector<double> levels;
+};
+
+/// True when a `gnuplot` executable is on PATH.
+bool gnuplot_available();
+
+/// Render to `output` (format from its extension). Throws Error when gnuplot is missing
+/// ("gnuplot not found; install it with: apt-get install gnuplot-nox"), fails, or the file
+/// exists and `overwrite` is false. Points with a non-positive or non-finite value are left out
+/// (log axes).
+void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::path& output,
+                           bool overwrite);
+void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path& output,
+                          bool overwrite);
+
+}  // namespace sigmatau

@@ -1,0 +1,210 @@
+// Driving gnuplot: data files in a private temporary directory, variables passed with -e,
+// output rendered to a temporary file and moved into place atomically.
+#include "sigmatau/plot.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/resources.hpp"
+
+extern char** environ;
+
+namespace sigmatau {
+namespace {
+
+/// A gnuplot single-quoted string literal ('' stands for one quote).
+std::string gnuplot_string(std::string_view text) {
+  std::string s = "'";
+  for (char c : text) {
+    if (c == '\'') s += "''";
+    else if (c == '\n') s += ' ';
+    else s += c;
+  }
+  return s + "'";
+}
+
+/// Channel names go into a space-separated gnuplot word list.
+std::string word_safe(std::string_view name) {
+  std::string s;
+  for (char c : name) s += (c == ' ' || c == '\'' || c == '"') ? '_' : c;
+  return s.empty() ? "?" : s;
+}
+
+std::string terminal_for(PlotFormat format) {
+  switch (format) {
+    case PlotFormat::svg: return "svg";
+    case PlotFormat::png: return "pngcairo";
+    case PlotFormat::pdf: return "pdfcairo";
+  }
+  return "svg";
+}
+
+/// A private scratch directory, removed with everything in it when this object goes.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "sigmatau-plot-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw Error("cannot create a temporary directory for plots");
+    path_ = pattern;
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+void write_blocks(const std::filesystem::path& file, const std::vector<PlotCurve>& curves,
+                  bool with_band) {
+  std::ofstream out(file);
+  out.precision(10);
+  for (const auto& curve : curves) {
+    for (std::size_t i = 0; i < curve.x.size(); ++i) {
+      const double x = curve.x[i], y = curve.y[i];
+      if (!(x > 0 && y > 0 && std::isfinite(x) && std::isfinite(y))) continue;
+      out << x << ' ' << y;
+      if (with_band) {
+        const bool has_band = i < curve.low.size() && i < curve.high.size() &&
+                              curve.low[i] > 0 && std::isfinite(curve.high[i]);
+        out << ' ' << (has_band ? curve.low[i] : y) << ' ' << (has_band ? curve.high[i] : y);
+      }
+      out << '\n';
+    }
+    out << "\n\n";
+  }
+  if (!out) throw Error("cannot write plot data to " + file.string());
+}
+
+void run_gnuplot(const std::string& script_name, const std::string& assignments,
+                 const std::filesystem::path& rendered, const ScratchDir& scratch) {
+  if (!gnuplot_available()) {
+    throw Error("gnuplot not found; install it with: apt-get install gnuplot-nox");
+  }
+  const auto script = resource_dir("plots") / script_name;
+  if (!std::filesystem::exists(script)) throw Error("plot template missing: " + script.string());
+  const auto log = scratch.path() / "gnuplot.log";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string program = "gnuplot";
+  std::string flag = "-e";
+  std::string script_path = script.string();
+  char* argv[] = {program.data(), flag.data(), const_cast<char*>(assignments.c_str()),
+                  script_path.data(), nullptr};
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw Error("cannot run gnuplot: " + std::string(std::strerror(spawned)));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::ifstream in(log);
+  std::string messages((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !std::filesystem::exists(rendered)) {
+    throw Error("gnuplot failed on " + script.string() + ": " + messages.substr(0, 400));
+  }
+}
+
+void move_into_place(const std::filesystem::path& rendered, const std::filesystem::path& output,
+                     bool overwrite) {
+  std::ifstream in(rendered, std::ios::binary);
+  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_file_atomically(output, content, overwrite);
+}
+
+std::string names_of(const std::vector<PlotCurve>& curves) {
+  std::string names;
+  for (const auto& c : curves) {
+    if (!names.empty()) names += ' ';
+    names += word_safe(c.name);
+  }
+  return names;
+}
+
+}  // namespace
+
+PlotFormat parse_plot_format(std::string_view text) {
+  if (text == "svg") return PlotFormat::svg;
+  if (text == "png") return PlotFormat::png;
+  if (text == "pdf") return PlotFormat::pdf;
+  throw Error("unknown plot format \"" + std::string(text) + "\"; expected svg, png or pdf");
+}
+
+PlotFormat plot_format_for(const std::filesystem::path& path) {
+  const auto ext = path.extension().string();
+  if (ext.size() < 2) throw Error(path.string() + ": plot file name needs .svg, .png or .pdf");
+  return parse_plot_format(ext.substr(1));
+}
+
+bool gnuplot_available() {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (!dir.empty() && ::access((std::filesystem::path(dir) / "gnuplot").c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::path& output,
+                           bool overwrite) {
+  const PlotFormat format = plot_format_for(output);
+  check_can_write(output, overwrite);
+  if (plot.curves.empty()) throw Error("nothing to plot");
+  ScratchDir scratch;
+  const auto data = scratch.path() / "adev.dat";
+  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  write_blocks(data, plot.curves, true);
+  const std::string assignments =
+      "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
+      "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
+      "; ylabel_text=" + gnuplot_string(plot.y_label) + "; nchannels=" + std::to_string(plot.curves.size()) +
+      "; names=" + gnuplot_string(names_of(plot.curves));
+  run_gnuplot("adev.gp", assignments, rendered, scratch);
+  move_into_place(rendered, output, overwrite);
+}
+
+void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path& output,
+                          bool overwrite) {
+  const PlotFormat format = plot_format_for(output);
+  check_can_write(output, overwrite);
+  if (plot.curves.empty()) throw Error("nothing to plot");
+  ScratchDir scratch;
+  const auto data = scratch.path() / "psd.dat";
+  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  write_blocks(data, plot.curves, false);
+  std::string levels;
+  if (plot.levels.size() == plot.curves.size()) {
+    std::ostringstream s;
+    s.precision(10);
+    for (double level : plot.levels) s << (s.tellp() > 0 ? " " : "") << level;
+    levels = s.str();
+  }
+  const std::string assignments =
+      "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
+      "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
+      "; ylabel_text=" + gnuplot_string(plot.y_label) + "; nchannels=" + std::to_string(plot.curves.size()) +
+      "; names=" + gnuplot_string(names_of(plot.curves)) + "; levels=" + gnuplot_string(levels);
+  run_gnuplot("psd.gp", assignments, rendered, scratch);
+  move_into_place(rendered, output, overwrite);
+}
+
+}  // namespace sigmatau
