@@ -1,0 +1,166 @@
+// `sigmatau simulate`: a synthetic IMU log from a noise model, with its exact truth in a sidecar.
+#include <charconv>
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "log_options.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/simulate.hpp"
+#include "sigmatau/units.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct SimulateArguments {
+  std::string gyro_model;
+  std::string accel_model;
+  double rate_hz = 0;
+  std::string duration;
+  std::uint64_t seed = 1;
+  std::string sensors = "gyro";
+  std::string kind = "rate";
+  std::string format = "csv";
+  std::string output;
+  bool force = false;
+  std::string roll = "0 deg", pitch = "0 deg", yaw = "0 deg", latitude = "0 deg";
+  std::string gyro_bias, accel_bias;
+  std::string gyro_lsb, gyro_full_scale, accel_lsb, accel_full_scale;
+  std::int64_t flicker_taps = std::int64_t{1} << 20;
+  unsigned threads = 1;
+};
+
+/// A plain number is taken in `default_unit`; otherwise the text is a quantity with its unit.
+double quantity_or_number(const std::string& text, const Dimension& d, const std::string& option,
+                          const char* default_unit) {
+  double v = 0;
+  const auto* end = text.data() + text.size();
+  const auto r = std::from_chars(text.data(), end, v);
+  if (r.ec == std::errc() && r.ptr == end) return v * parse_unit(default_unit).factor;
+  return parse_quantity_as(text, d, option);
+}
+
+Eigen::Vector3d triple(const std::string& text, const Dimension& d, const std::string& option) {
+  const auto parts = split_list(text, option);
+  if (parts.size() != 3)
+    throw Error(option + " '" + text + "': expected three comma-separated values x,y,z with units");
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) v[i] = parse_quantity_as(parts[static_cast<std::size_t>(i)], d, option);
+  return v;
+}
+
+void run_simulate(const SimulateArguments& a) {
+  SimulationConfig c;
+  c.rate_hz = a.rate_hz;
+  if (!(a.rate_hz > 0)) throw Error("--rate must be > 0 Hz");
+  const double duration_s = quantity_or_number(a.duration, dim::time, "--duration", "s");
+  if (!(duration_s > 0)) throw Error("--duration must be > 0");
+  const double samples = std::floor(duration_s * a.rate_hz + 0.5);
+  if (!(samples >= 1) || samples > 9.0e15)
+    throw Error("--duration x --rate must give between 1 and 9e15 samples");
+  c.samples = static_cast<std::int64_t>(samples);
+  c.seed = a.seed;
+  c.kind = parse_output_kind(a.kind);
+  c.flicker_max_taps = a.flicker_taps;
+  c.threads = a.threads;
+  StaticPose pose;
+  pose.roll_rad = parse_quantity_as(a.roll, dim::angle, "--roll");
+  pose.pitch_rad = parse_quantity_as(a.pitch, dim::angle, "--pitch");
+  pose.yaw_rad = parse_quantity_as(a.yaw, dim::angle, "--yaw");
+  pose.latitude_rad = parse_quantity_as(a.latitude, dim::angle, "--latitude");
+  c.truth = static_truth(pose);
+  for (const auto& s : split_list(a.sensors, "--sensors")) {
+    if (s == "gyro") {
+      ErrorModel m;
+      if (!a.gyro_model.empty()) {
+        const NoiseTerms t = parse_noise_terms(a.gyro_model, Sensor::gyro);
+        m.noise = {t, t, t};
+      }
+      if (!a.gyro_bias.empty()) m.bias = triple(a.gyro_bias, dim::angular_rate, "--gyro-bias");
+      c.gyro = m;
+    } else if (s == "accel") {
+      ErrorModel m;
+      if (!a.accel_model.empty()) {
+        const NoiseTerms t = parse_noise_terms(a.accel_model, Sensor::accel);
+        m.noise = {t, t, t};
+      }
+      if (!a.accel_bias.empty()) m.bias = triple(a.accel_bias, dim::acceleration, "--accel-bias");
+      c.accel = m;
+    } else {
+      throw Error("--sensors: unknown sensor '" + s + "'; expected gyro and/or accel");
+    }
+  }
+  if (!a.gyro_model.empty() && !c.gyro) throw Error("--model is given but --sensors has no gyro");
+  if (!a.accel_model.empty() && !c.accel)
+    throw Error("--accel-model is given but --sensors has no accel");
+  if (c.kind == OutputKind::counts) {
+    const auto counts = [](const std::string& lsb, const std::string& fs, const Dimension& d,
+                           const char* what) {
+      if (lsb.empty() || fs.empty())
+        throw Error(std::string("--kind counts needs --") + what + "-lsb and --" + what +
+                    "-full-scale");
+      return CountsFormat{parse_quantity_as(lsb, d, std::string("--") + what + "-lsb"),
+                          parse_quantity_as(fs, d, std::string("--") + what + "-full-scale")};
+    };
+    if (c.gyro) c.gyro_counts = counts(a.gyro_lsb, a.gyro_full_scale, dim::angular_rate, "gyro");
+    if (c.accel)
+      c.accel_counts = counts(a.accel_lsb, a.accel_full_scale, dim::acceleration, "accel");
+  }
+  const SampleFormat format = parse_sample_format(a.format);
+  const bool tty = stderr_is_tty();
+  write_simulation(c, a.output, format, a.force, [tty](std::int64_t done, std::int64_t total) {
+    if (tty) std::cerr << "\rsimulate: " << (100 * done / total) << "%" << std::flush;
+  });
+  if (tty) std::cerr << "\n";
+  std::cout << "wrote " << a.output << " (" << c.samples << " samples at " << c.rate_hz
+            << " Hz, kind " << to_string(c.kind) << ") and " << a.output << ".json\n";
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app) {
+  auto args = std::make_shared<SimulateArguments>();
+  CLI::App* command = app.add_subcommand(
+      "simulate", "Synthetic IMU log from a noise model, with its exact truth and theoretical "
+                  "AVAR in FILE.json");
+  command->add_option("--model", args->gyro_model,
+                      "gyro noise per axis, e.g. \"N=0.15 deg/sqrt(h), B=3 deg/h, "
+                      "K=0.02 deg/h/sqrt(h)\" (keys Q N B K R, GM=<sigma> @ <tau>, "
+                      "SIN=<amplitude> @ <frequency>)");
+  command->add_option("--accel-model", args->accel_model,
+                      "accelerometer noise per axis, e.g. \"N=60 ug/sqrt(Hz), B=0.05 mg\"");
+  command->add_option("--rate", args->rate_hz, "sample rate [Hz]")->required();
+  command->add_option("--duration", args->duration, "log length, e.g. 2h, \"600 s\" (number: s)")
+      ->required();
+  command->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  command->add_option("--sensors", args->sensors, "gyro, accel or gyro,accel")
+      ->capture_default_str();
+  command->add_option("--kind", args->kind, "rate | increment | counts")->capture_default_str();
+  command->add_option("--format", args->format, "csv | f32 | f64")->capture_default_str();
+  command->add_option("-o,--output", args->output, "output FILE (and FILE.json)")->required();
+  command->add_flag("--force", args->force, "overwrite existing files");
+  command->add_option("--roll", args->roll, "roll of the sensor frame, e.g. \"10 deg\"")
+      ->capture_default_str();
+  command->add_option("--pitch", args->pitch, "pitch")->capture_default_str();
+  command->add_option("--yaw", args->yaw, "yaw (heading)")->capture_default_str();
+  command->add_option("--latitude", args->latitude, "latitude (Earth rate, gravity)")
+      ->capture_default_str();
+  command->add_option("--gyro-bias", args->gyro_bias, "constant gyro bias x,y,z, e.g. "
+                                                      "\"1 deg/h,0 deg/h,-2 deg/h\"");
+  command->add_option("--accel-bias", args->accel_bias, "constant accel bias x,y,z");
+  command->add_option("--gyro-lsb", args->gyro_lsb, "counts: gyro rate per LSB, e.g. "
+                                                    "\"0.01 deg/s\"");
+  command->add_option("--gyro-full-scale", args->gyro_full_scale, "counts: gyro saturation");
+  command->add_option("--accel-lsb", args->accel_lsb, "counts: accel per LSB, e.g. \"0.1 mg\"");
+  command->add_option("--accel-full-scale", args->accel_full_scale, "counts: accel saturation");
+  command->add_option("--flicker-taps", args->flicker_taps,
+                      "longest flicker filter (power of two); flicker is flat for tau up to "
+                      "taps/4 samples")
+      ->capture_default_str();
+  command->add_option("--threads", args->threads, "worker threads (results do not depend on it)")
+      ->capture_default_str();
+  command->callback([args] { run_simulate(*args); });
+}
+
+}  // namespace sigmatau::cli

@@ -1,0 +1,156 @@
+#pragma once
+/// \file simulate.hpp
+/// Synthetic IMU logs with known truth: y = (I + T) x + b + c (temperature - T0) + noise, per
+/// triad (noise_model.hpp), generated in streaming blocks with bounded memory.
+///
+/// Determinism: every random number depends only on (seed, sensor, axis, term, sample index):
+/// each such stream is cut into sub-blocks of kRandomSubBlock samples, and a sub-block's
+/// generator (xoshiro256++) is seeded from a hash of those four keys and the sub-block index.
+/// So the same seed gives bit-identical samples whatever the caller's block size and the
+/// thread count.
+///
+/// Per-term recipes (tau0 = 1/rate, w_k unit normal; THEORY.md section 6):
+///  - white:        y_k += (N / sqrt(tau0)) w_k
+///  - quantization: y_k += (e_k - e_{k-1}) / tau0, e_k uniform of width Q sqrt(12) (the additive
+///                  equivalent of quantizing the integrated angle with step Q sqrt(12))
+///  - flicker:      y_k += B sum_{j<L} h_j w_{k-j} (Kasdin, h_j = h_{j-1}(j - 1/2)/j), an
+///                  exact L-tap FIR evaluated by FFT overlap-save; the white input is
+///                  regenerated from its counter-based stream, so the process is stationary and
+///                  its AVAR is flicker_avar_per_unit(m, L) B^2 exactly. It is 1/f for
+///                  f >~ 1/(L tau0); flicker_band(L) gives the taus where the ADEV is flat.
+///  - random walk:  b_k = b_{k-1} + K sqrt(tau0) w_k, b_{-1} = 0
+///  - Gauss-Markov: g_k = phi g_{k-1} + sigma sqrt(1 - phi^2) w_k, phi = exp(-tau0/T_c),
+///                  g_{-1} ~ N(0, sigma^2) (stationary from the start)
+///  - ramp:         y_k += R t_k;   sinusoid: y_k += A sin(2 pi f t_k + phase)
+/// Sample k is at t_k = k tau0 (rate and counts). Increment output: sample k is the integral
+/// over [k tau0, (k+1) tau0]: deterministic parts (truth, bias, ramp, sinusoid) are integrated
+/// exactly, and each noise sample above is taken as the mean rate over its interval.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sigmatau/noise_model.hpp"
+
+namespace sigmatau {
+
+/// Earth rotation rate [rad/s] (WGS-84).
+inline constexpr double kEarthRate = 7.292115e-5;
+/// Random streams are generated in sub-blocks of this many samples (see file comment).
+inline constexpr std::int64_t kRandomSubBlock = 4096;
+
+/// WGS-84 normal gravity on the ellipsoid at geodetic latitude [rad] (Somigliana), [m/s^2].
+double normal_gravity(double latitude_rad);
+
+/// A static sensor: attitude of the sensor (body) frame relative to local north-east-down,
+/// as roll, pitch, yaw (z-y-x Euler angles) [rad], and the latitude [rad].
+struct StaticPose {
+  double roll_rad = 0;
+  double pitch_rad = 0;
+  double yaw_rad = 0;
+  double latitude_rad = 0;
+};
+
+/// The true (error-free) signals in the sensor frame.
+struct Truth {
+  Eigen::Vector3d angular_rate = Eigen::Vector3d::Zero();    ///< [rad/s]
+  Eigen::Vector3d specific_force = Eigen::Vector3d::Zero();  ///< [m/s^2]
+};
+
+/// Earth rate and minus gravity (specific force of a static sensor) rotated into the sensor
+/// frame: omega_n = Omega (cos lat, 0, -sin lat), f_n = (0, 0, -g(lat)); level, z down reads -g.
+Truth static_truth(const StaticPose& pose);
+
+enum class OutputKind { rate, increment, counts };
+/// "rate" | "increment" | "counts"; throws Error otherwise.
+OutputKind parse_output_kind(std::string_view text);
+std::string_view to_string(OutputKind kind);
+
+/// Integer-count output of one triad: value = round(rate / lsb), clamped to
+/// +-floor(full_scale / lsb).
+struct CountsFormat {
+  double lsb = 0;         ///< rate per count [rad/s | m/s^2]
+  double full_scale = 0;  ///< saturation [rad/s | m/s^2]
+};
+
+struct SimulationConfig {
+  double rate_hz = 0;          ///< sample rate [Hz]
+  std::int64_t samples = 0;    ///< number of samples
+  std::uint64_t seed = 1;
+  std::optional<ErrorModel> gyro;   ///< simulated when present (channels gx, gy, gz)
+  std::optional<ErrorModel> accel;  ///< simulated when present (channels ax, ay, az)
+  Truth truth;                      ///< true signals (e.g. static_truth(pose))
+  double temperature_k = 298.15;    ///< constant sensor temperature [K]
+  OutputKind kind = OutputKind::rate;
+  CountsFormat gyro_counts;         ///< for kind == counts
+  CountsFormat accel_counts;        ///< for kind == counts
+  /// Longest flicker filter [taps], a power of two >= kRandomSubBlock. Memory is about
+  /// 8 L bytes per flicker channel plus 32 L per thread plus 16 L; the flat band ends near
+  /// flicker_band(L).m_high tau0.
+  std::int64_t flicker_max_taps = std::int64_t{1} << 20;
+  unsigned threads = 1;             ///< worker threads (results do not depend on it)
+};
+
+/// Throws Error on a bad configuration (rate, samples, no sensor, bad model, counts format).
+void validate(const SimulationConfig& config);
+
+/// Taps of the flicker filter used for a configuration: the smallest power of two >= samples
+/// (at least kRandomSubBlock), capped at flicker_max_taps.
+std::int64_t flicker_taps(const SimulationConfig& config);
+
+/// The sampling description for sampled_avar() of a simulated log.
+Sampling sampling_of(const SimulationConfig& config);
+
+/// Streaming generator. Channels are gx, gy, gz (if gyro) then ax, ay, az (if accel).
+class Simulator {
+ public:
+  explicit Simulator(const SimulationConfig& config);  ///< validates; throws Error
+  ~Simulator();
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  const SimulationConfig& config() const;
+  int channels() const;
+  std::vector<std::string> channel_names() const;
+  std::int64_t position() const;  ///< samples produced so far
+  /// Time stamp of sample k [s]: k tau0 (rate, counts) or (k + 1) tau0 (increment: end of the
+  /// integration interval).
+  double time_s(std::int64_t k) const;
+
+  /// Produces the next rows (at most max_rows, fewer at the end of the log) into `out`, row-major
+  /// [rows x channels()] in SI (rate: rad/s, m/s^2; increment: rad, m/s; counts: counts).
+  /// Requires out.size() >= max_rows * channels(). Returns the rows produced (0 at the end).
+  std::int64_t next(std::span<double> out, std::int64_t max_rows);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The exact truth of a configuration as JSON text: every parameter in SI, the truth vectors,
+/// the flicker taps and band, and the theoretical AVAR (sampled_avar) per channel at the octave
+/// averaging factors 1, 2, 4, ... <= (samples - 1) / 4.
+std::string simulation_sidecar_json(const SimulationConfig& config);
+
+enum class SampleFormat { csv, f32, f64 };
+/// "csv" | "f32" | "f64"; throws Error otherwise.
+SampleFormat parse_sample_format(std::string_view text);
+
+/// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az" for the sensors
+/// present; f32/f64: little-endian rows of the channels, no time column) and its sidecar to
+/// "<path>.json". Both files are written to a temporary name in their directory and renamed
+/// into place; an existing file is an Error unless `overwrite`. `progress(done, total)` is
+/// called after each block when set.
+void write_simulation(const SimulationConfig& config, const std::filesystem::path& path,
+                      SampleFormat format, bool overwrite,
+                      const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+
+}  // namespace sigmatau

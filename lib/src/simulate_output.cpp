@@ -1,0 +1,243 @@
+// Simulated logs to files (csv, f32, f64) with their sidecar JSON, written atomically.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/simulate.hpp"
+
+namespace sigmatau {
+namespace {
+
+/// Rows per write: 16 Ki rows x 6 channels x 8 bytes = 768 KiB of samples per block.
+constexpr std::int64_t kRowsPerWrite = std::int64_t{1} << 14;
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
+
+nlohmann::json terms_json(const NoiseTerms& t) {
+  nlohmann::json j = nlohmann::json::object();
+  if (t.quantization) j["quantization"] = *t.quantization;
+  if (t.white) j["white"] = *t.white;
+  if (t.bias_instability) j["bias_instability"] = *t.bias_instability;
+  if (t.rate_random_walk) j["rate_random_walk"] = *t.rate_random_walk;
+  if (t.rate_ramp) j["rate_ramp"] = *t.rate_ramp;
+  if (t.gauss_markov)
+    j["gauss_markov"] = {{"sigma", t.gauss_markov->sigma}, {"tau_c_s", t.gauss_markov->tau_c_s}};
+  if (t.sinusoid)
+    j["sinusoid"] = {{"amplitude", t.sinusoid->amplitude},
+                     {"frequency_hz", t.sinusoid->frequency_hz},
+                     {"phase_rad", t.sinusoid->phase_rad}};
+  return j;
+}
+
+nlohmann::json model_json(const ErrorModel& m, Sensor sensor, const Eigen::Vector3d& truth,
+                          double temperature_k) {
+  nlohmann::json j;
+  j["units"] = sensor == Sensor::gyro
+                   ? nlohmann::json{{"rate", "rad/s"}, {"quantization", "rad"},
+                                    {"white", "rad/s/sqrt(Hz)"}, {"bias_instability", "rad/s"},
+                                    {"rate_random_walk", "rad/s^2/sqrt(Hz)"},
+                                    {"rate_ramp", "rad/s^2"}}
+                   : nlohmann::json{{"rate", "m/s^2"}, {"quantization", "m/s"},
+                                    {"white", "m/s^2/sqrt(Hz)"}, {"bias_instability", "m/s^2"},
+                                    {"rate_random_walk", "m/s^3/sqrt(Hz)"},
+                                    {"rate_ramp", "m/s^3"}};
+  j["truth"] = vector_json(truth);
+  j["scale_factor"] = vector_json(m.scale_factor);
+  j["misalignment"] = {vector_json(m.misalignment.row(0).transpose()),
+                       vector_json(m.misalignment.row(1).transpose()),
+                       vector_json(m.misalignment.row(2).transpose())};
+  j["bias"] = vector_json(m.bias);
+  j["temperature_coefficient"] = vector_json(m.temperature_coefficient);
+  j["reference_temperature_k"] = m.reference_temperature_k;
+  j["expected_mean"] = vector_json(m.deterministic_output(truth, temperature_k));
+  j["noise"] = {terms_json(m.noise[0]), terms_json(m.noise[1]), terms_json(m.noise[2])};
+  return j;
+}
+
+/// Removes the temporary file unless released (any exception on the way leaves nothing behind).
+struct TempFile {
+  std::filesystem::path path;
+  std::FILE* file = nullptr;
+  bool keep = false;
+  ~TempFile() {
+    if (file) std::fclose(file);
+    if (!keep) {
+      std::error_code ec;
+      std::filesystem::remove(path, ec);
+    }
+  }
+};
+
+std::filesystem::path temporary_name(const std::filesystem::path& path) {
+  std::random_device device;
+  std::uniform_int_distribution<unsigned> digits(0, 0xFFFFFF);
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, ".tmp-%06x", digits(device));
+  auto name = path;
+  name += suffix;
+  return name;
+}
+
+void write_all(TempFile& f, const char* data, std::size_t size) {
+  if (size && std::fwrite(data, 1, size, f.file) != size)
+    throw Error("cannot write " + f.path.string() + ": " + std::strerror(errno));
+}
+
+void append_number(std::string& s, double v) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  s.append(buffer, r.ptr);
+}
+
+}  // namespace
+
+SampleFormat parse_sample_format(std::string_view text) {
+  if (text == "csv") return SampleFormat::csv;
+  if (text == "f32") return SampleFormat::f32;
+  if (text == "f64") return SampleFormat::f64;
+  throw Error("unknown format '" + std::string(text) + "'; expected csv, f32 or f64");
+}
+
+std::string simulation_sidecar_json(const SimulationConfig& c) {
+  validate(c);
+  nlohmann::json j;
+  j["format"] = "sigmatau-simulation";
+  j["schema_version"] = 1;
+  j["seed"] = c.seed;
+  j["rate_hz"] = c.rate_hz;
+  j["samples"] = c.samples;
+  j["duration_s"] = static_cast<double>(c.samples) / c.rate_hz;
+  j["kind"] = std::string(to_string(c.kind));
+  j["temperature_k"] = c.temperature_k;
+  std::vector<std::string> columns{"t"};
+  if (c.gyro) {
+    j["gyro"] = model_json(*c.gyro, Sensor::gyro, c.truth.angular_rate, c.temperature_k);
+    for (const char* n : {"gx", "gy", "gz"}) columns.emplace_back(n);
+  }
+  if (c.accel) {
+    j["accel"] = model_json(*c.accel, Sensor::accel, c.truth.specific_force, c.temperature_k);
+    for (const char* n : {"ax", "ay", "az"}) columns.emplace_back(n);
+  }
+  j["columns"] = columns;
+  if (c.kind == OutputKind::counts) {
+    if (c.gyro) j["gyro"]["counts"] = {{"lsb", c.gyro_counts.lsb}, {"full_scale", c.gyro_counts.full_scale}};
+    if (c.accel)
+      j["accel"]["counts"] = {{"lsb", c.accel_counts.lsb}, {"full_scale", c.accel_counts.full_scale}};
+  }
+  const Sampling sampling = sampling_of(c);
+  bool any_flicker = false;
+  for (const auto* model : {c.gyro ? &*c.gyro : nullptr, c.accel ? &*c.accel : nullptr})
+    if (model)
+      for (const auto& t : model->noise) any_flicker = any_flicker || t.bias_instability;
+  if (any_flicker) {
+    const FlickerBand band = flicker_band(sampling.flicker_taps);
+    j["flicker"] = {{"method", "Kasdin fractional integration, exact FIR by FFT overlap-save"},
+                    {"taps", sampling.flicker_taps},
+                    {"flat_band_tau_s",
+                     {static_cast<double>(band.m_low) * sampling.tau0_s,
+                      static_cast<double>(band.m_high) * sampling.tau0_s}}};
+  }
+  // Theoretical AVAR at octave taus, up to Stable32's OADEV stop ratio (m <= (N-1)/4) where N =
+  // samples + 1 phase points.
+  std::vector<double> taus;
+  std::vector<std::int64_t> ms;
+  for (std::int64_t m = 1; 4 * m <= c.samples; m *= 2) {
+    ms.push_back(m);
+    taus.push_back(static_cast<double>(m) * sampling.tau0_s);
+  }
+  nlohmann::json theory;
+  theory["statistic"] = "avar (overlapping), exact for the sampled process, in rate unit^2";
+  theory["tau_s"] = taus;
+  theory["note"] =
+      c.kind == OutputKind::counts
+          ? "the counts' LSB rounding is not included (with enough other noise it adds white "
+            "noise of variance LSB^2/12 per sample)"
+          : "";
+  const auto curves = [&](const ErrorModel& model, const char* prefix) {
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<double> avar;
+      for (std::int64_t m : ms)
+        avar.push_back(sampled_avar(model.noise[static_cast<std::size_t>(axis)], m, sampling));
+      theory["avar"][std::string(prefix) + "xyz"[axis]] = avar;
+    }
+  };
+  if (c.gyro) curves(*c.gyro, "g");
+  if (c.accel) curves(*c.accel, "a");
+  j["theory"] = theory;
+  return j.dump(2) + "\n";
+}
+
+void write_simulation(const SimulationConfig& config, const std::filesystem::path& path,
+                      SampleFormat format, bool overwrite,
+                      const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  auto sidecar_path = path;
+  sidecar_path += ".json";
+  check_can_write(path, overwrite);
+  check_can_write(sidecar_path, overwrite);
+  const std::string sidecar = simulation_sidecar_json(config);  // validates
+  Simulator simulator(config);
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+
+  TempFile tmp{temporary_name(path)};
+  tmp.file = std::fopen(tmp.path.c_str(), "wb");
+  if (!tmp.file) throw Error("cannot create " + tmp.path.string() + ": " + std::strerror(errno));
+  const int nch = simulator.channels();
+  std::vector<double> block(static_cast<std::size_t>(kRowsPerWrite * nch));
+  std::string text;
+  std::vector<float> floats;
+  if (format == SampleFormat::csv) {
+    text = "t";
+    for (const auto& n : simulator.channel_names()) text += "," + n;
+    text += "\n";
+    write_all(tmp, text.data(), text.size());
+  }
+  static_assert(std::endian::native == std::endian::little,
+                "binary output is little-endian; add byte swapping for this platform");
+  for (;;) {
+    const std::int64_t first = simulator.position();
+    const std::int64_t rows = simulator.next(block, kRowsPerWrite);
+    if (rows == 0) break;
+    const auto values = static_cast<std::size_t>(rows * nch);
+    if (format == SampleFormat::csv) {
+      text.clear();
+      for (std::int64_t r = 0; r < rows; ++r) {
+        append_number(text, simulator.time_s(first + r));
+        for (int ch = 0; ch < nch; ++ch) {
+          text += ',';
+          append_number(text, block[static_cast<std::size_t>(r * nch + ch)]);
+        }
+        text += '\n';
+      }
+      write_all(tmp, text.data(), text.size());
+    } else if (format == SampleFormat::f64) {
+      write_all(tmp, reinterpret_cast<const char*>(block.data()), values * sizeof(double));
+    } else {
+      floats.assign(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(values));
+      write_all(tmp, reinterpret_cast<const char*>(floats.data()), values * sizeof(float));
+    }
+    if (progress) progress(simulator.position(), config.samples);
+  }
+  if (std::fflush(tmp.file) != 0 || ::fsync(::fileno(tmp.file)) != 0)
+    throw Error("cannot write " + tmp.path.string() + ": " + std::strerror(errno));
+  std::fclose(tmp.file);
+  tmp.file = nullptr;
+  // The sidecar first: a log without its truth is worse than truth without its log.
+  write_file_atomically(sidecar_path, sidecar, overwrite);
+  std::error_code ec;
+  std::filesystem::rename(tmp.path, path, ec);
+  if (ec) throw Error("cannot rename " + tmp.path.string() + " to " + path.string() + ": " + ec.message());
+  tmp.keep = true;
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,28 @@
+# `sigmatau simulate`: files, header, sidecar, no overwrite, bad input (exit 2, one-line message).
+set(SIM_DIR ${CMAKE_CURRENT_BINARY_DIR}/simulate_cli)
+file(MAKE_DIRECTORY ${SIM_DIR})
+sigmatau_cli_test(NAME cli_simulate_csv EXIT 0 WORKING_DIRECTORY ${SIM_DIR}
+  STDOUT "wrote sim\\.csv \\(1000 samples at 100 Hz"
+  ARGS simulate --model "N=0.15 deg/sqrt(h), B=3 deg/h, K=0.02 deg/h/sqrt(h)" --rate 100
+       --duration "10 s" --seed 3 --sensors gyro,accel --force -o sim.csv)
+sigmatau_cli_test(NAME cli_simulate_no_overwrite EXIT 2 WORKING_DIRECTORY ${SIM_DIR}
+  STDERR "exists; use --force"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 100 --duration 1 -o sim.csv)
+set_tests_properties(cli_simulate_no_overwrite PROPERTIES DEPENDS cli_simulate_csv)
+sigmatau_cli_test(NAME cli_simulate_wrong_dimension EXIT 2 NO_FILE ${SIM_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIM_DIR}
+  STDERR "N"
+  ARGS simulate --model "N=3 deg/h" --rate 100 --duration 1 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_unknown_term EXIT 2 NO_FILE ${SIM_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIM_DIR}
+  STDERR "unknown term 'Z'"
+  ARGS simulate --model "Z=3 deg/h" --rate 100 --duration 1 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_counts_need_lsb EXIT 2 NO_FILE ${SIM_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIM_DIR}
+  STDERR "--gyro-lsb"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 100 --duration 1 --kind counts -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_f32 EXIT 0 WORKING_DIRECTORY ${SIM_DIR}
+  STDOUT "wrote sim\\.f32"
+  ARGS simulate --model "N=0.15 deg/sqrt(h), GM=1 deg/h @ 10 s" --rate 50 --duration 2min
+       --kind counts --gyro-lsb "0.001 deg/s" --gyro-full-scale "250 deg/s" --format f32
+       --force -o sim.f32)
