@@ -20,16 +20,11 @@
 #include <numbers>
 #include <string>
 
+#include "fftw_planner.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
 namespace {
-
-/// FFTW's planner is not thread-safe; plan creation and destruction go through this lock.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 /// Bins farther apart than this have a window power correlation below 1e-6 for every window
 /// offered, so they are treated as independent.
@@ -147,7 +142,7 @@ struct WelchAccumulator::Impl {
   std::int64_t segments = 0;
 
   ~Impl() {
-    std::lock_guard lock(fftw_planner_mutex());
+    std::lock_guard lock(detail::fftw_planner_mutex());
     if (plan) fftw_destroy_plan(plan);
     fftw_free(in);
     fftw_free(out);
@@ -206,7 +201,7 @@ WelchAccumulator::WelchAccumulator(double rate_hz, const WelchOptions& options,
   d.window = make_window(options.window, length);
   for (double v : d.window) d.window_power += v * v;
   d.power_sum.assign(static_cast<std::size_t>(length / 2 + 1), 0.0);
-  std::lock_guard lock(fftw_planner_mutex());
+  std::lock_guard lock(detail::fftw_planner_mutex());
   d.in = fftw_alloc_real(static_cast<std::size_t>(length));
   d.out = fftw_alloc_complex(static_cast<std::size_t>(length / 2 + 1));
   if (!d.in || !d.out) throw Error("PSD: out of memory for a segment of " + std::to_string(length));

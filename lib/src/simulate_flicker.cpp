@@ -9,21 +9,13 @@
 #include <fftw3.h>
 
 #include <mutex>
+
+#include "fftw_planner.hpp"
 #include <new>
 
 #include "simulate_random.hpp"
 
 namespace sigmatau::detail {
-namespace {
-
-/// FFTW's planner is not thread-safe: plan creation and destruction go through this lock.
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
-
-}  // namespace
-
 FlickerFilter::Workspace::Workspace(std::int64_t taps) {
   time = fftw_alloc_real(static_cast<std::size_t>(2 * taps));
   freq = fftw_alloc_complex(static_cast<std::size_t>(taps + 1));
@@ -42,7 +34,7 @@ FlickerFilter::FlickerFilter(std::int64_t taps) : taps_(taps) {
   if (!spectrum) throw std::bad_alloc();
   spectrum_ = spectrum;
   {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     forward_ = fftw_plan_dft_r2c_1d(static_cast<int>(n), ws.time,
                                     static_cast<fftw_complex*>(ws.freq), FFTW_ESTIMATE);
     backward_ = fftw_plan_dft_c2r_1d(static_cast<int>(n), static_cast<fftw_complex*>(ws.freq),
@@ -66,7 +58,7 @@ FlickerFilter::FlickerFilter(std::int64_t taps) : taps_(taps) {
 
 FlickerFilter::~FlickerFilter() {
   {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     fftw_destroy_plan(static_cast<fftw_plan>(forward_));
     fftw_destroy_plan(static_cast<fftw_plan>(backward_));
   }
