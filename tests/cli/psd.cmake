@@ -9,7 +9,7 @@ sigmatau_cli_test(NAME cli_psd_table EXIT 0
   ARGS psd ${example} --time-column t --unit deg/s)
 sigmatau_cli_test(NAME cli_psd_out_unit EXIT 0
   STDOUT "gy +N = 0\\.(29|30|31)[0-9]* \\[.*\\] deg/sqrt\\(h\\)"
-  ARGS psd ${example} --time-column t --unit deg/s --out-unit deg/sqrt(h))
+  ARGS psd ${example} --time-column t --unit deg/s --out-unit "deg/sqrt(h)")
 sigmatau_cli_test(NAME cli_psd_json EXIT 0
   STDOUT "\"convention\": \"one-sided\".*\"one_sided_asd\""
   ARGS psd ${white} --time-column t --format json --bins-per-decade 5)
