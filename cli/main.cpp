@@ -16,7 +16,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Registration list: one line per verb.
   sigmatau::cli::add_adev_command(app);
+  sigmatau::cli::add_simulate_command(app);
+  sigmatau::cli::add_units_command(app);
   sigmatau::cli::add_psd_command(app);
+  sigmatau::cli::add_specs_command(app);
+  sigmatau::cli::add_convert_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -9,5 +9,7 @@ void add_adev_command(CLI::App& app);
 void add_psd_command(CLI::App& app);
 void add_units_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
+void add_specs_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
 
 }  // namespace sigmatau::cli

@@ -1,0 +1,185 @@
+// `sigmatau convert`: data sheet or typed-in noise terms -> discrete covariances at a filter
+// rate, exported for a filter project, with the arithmetic on request (--explain).
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include "sigmatau/convert.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/resources.hpp"
+#include "sigmatau/spec.hpp"
+#include "sigmatau/units.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct ConvertArguments {
+  std::string spec;
+  std::string noise_density;
+  std::string bias_stability;
+  std::string random_walk;
+  std::string sensor = "gyro";
+  std::string rate;
+  std::string bias_model = "rw";
+  std::string tref = "100 s";
+  std::string tau_min;
+  double inflate = 1;
+  std::string convention = "two-sided";
+  std::string to;
+  bool explain = false;
+  std::string output;
+  bool force = false;
+};
+
+/// A time or rate option: "100 s", "100s", "2 min", or a bare number in `bare_unit`.
+double quantity_option(const std::string& text, const Dimension& d, const char* option,
+                       const char* bare_unit) {
+  char* end = nullptr;
+  [[maybe_unused]] const double bare = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && *end == '\0') return parse_quantity_as(text + " " + bare_unit, d, option);
+  return parse_quantity_as(text, d, option);
+}
+
+void run_convert(const ConvertArguments& args) {
+  ConvertOptions options;
+  if (args.rate.empty()) throw Error("--rate is required (the filter's IMU rate, e.g. 200 Hz)");
+  options.rate_hz = quantity_option(args.rate, dim::frequency, "--rate", "Hz");
+  options.bias_model = parse_bias_model(args.bias_model);
+  options.t_ref_s = quantity_option(args.tref, dim::time, "--tref", "s");
+  if (!args.tau_min.empty()) {
+    options.tau_min_s = quantity_option(args.tau_min, dim::time, "--tau-min", "s");
+  }
+  options.inflate = args.inflate;
+  options.convention = parse_density_convention(args.convention);
+  const bool typed = !args.noise_density.empty() || !args.bias_stability.empty() ||
+                     !args.random_walk.empty();
+  if (args.spec.empty() == !typed) {
+    throw Error("give either --spec FILE|NAME or the terms (--noise-density, --bias-stability, "
+                "--random-walk), not both and not neither");
+  }
+  std::optional<ExportFormat> format;
+  if (!args.to.empty()) format = parse_export_format(args.to);
+  if (!args.output.empty()) {
+    if (!format) throw Error("-o needs --to FORMAT (kalibr, openvins, vins-fusion, gtsam, px4, json)");
+    check_can_write(args.output, args.force);
+  }
+
+  std::vector<TriadNoise> triads;
+  std::string source;
+  if (!args.spec.empty()) {
+    const auto file = find_data_sheet(args.spec, resource_dir("specs"));
+    const DataSheet sheet = load_data_sheet(file);
+    source = "data sheet " + file.string();
+    for (const Sensor s : {Sensor::gyro, Sensor::accel}) {
+      if (!sheet.sensor(s)) continue;
+      TriadNoise t = triad_from_data_sheet(sheet, s, options.convention);
+      const NoiseTerms& a = t.axes[0];
+      if (a.white || a.bias_instability || a.rate_random_walk) triads.push_back(std::move(t));
+    }
+    if (triads.empty()) {
+      throw Error(file.string() + " prints no noise density, ARW/VRW, bias stability or rate "
+                                  "random walk: nothing to convert");
+    }
+  } else {
+    Sensor sensor;
+    if (args.sensor == "gyro") sensor = Sensor::gyro;
+    else if (args.sensor == "accel") sensor = Sensor::accel;
+    else throw Error("--sensor: found \"" + args.sensor + "\", expected gyro or accel");
+    const bool gyro = sensor == Sensor::gyro;
+    NoiseTerms terms;
+    TriadNoise t;
+    if (!args.noise_density.empty()) {
+      const double nd = parse_quantity_as(
+          args.noise_density, gyro ? dim::angle_random_walk : dim::velocity_random_walk,
+          "--noise-density");
+      if (!(nd > 0)) throw Error("--noise-density must be > 0");
+      const bool two = options.convention == DensityConvention::two_sided;
+      terms.white = two ? nd : nd / std::sqrt(2.0);
+      t.white_origin = "noise density " + args.noise_density +
+                       (two ? " read as N = ND (two-sided)" : " read as one-sided: N = ND / sqrt(2)");
+    }
+    std::string bias;
+    if (!args.bias_stability.empty()) {
+      const double b = parse_quantity_as(args.bias_stability,
+                                         gyro ? dim::angular_rate : dim::acceleration,
+                                         "--bias-stability");
+      if (!(b > 0)) throw Error("--bias-stability must be > 0");
+      terms.bias_instability = b / kFlickerFloorFactor;
+      bias = "bias stability " + args.bias_stability + " read as the ADEV floor 0.664 B";
+    }
+    if (!args.random_walk.empty()) {
+      const double k = parse_quantity_as(
+          args.random_walk, gyro ? dim::gyro_rate_random_walk : dim::accel_rate_random_walk,
+          "--random-walk");
+      if (!(k > 0)) throw Error("--random-walk must be > 0");
+      terms.rate_random_walk = k;
+      bias += std::string(bias.empty() ? "" : "; ") + "rate random walk K = " + args.random_walk;
+    }
+    t.sensor = sensor;
+    t.axes = {terms, terms, terms};
+    t.bias_origin = bias;
+    triads.push_back(std::move(t));
+    source = "command-line terms";
+  }
+
+  const DiscreteNoise noise = convert_noise(triads, options, source);
+  if (!format) {
+    std::cout << noise.explain;
+    return;
+  }
+  const std::string text = export_filter_config(noise, *format);
+  if (!args.output.empty()) {
+    write_file_atomically(args.output, text, args.force);
+    if (args.explain) std::cout << noise.explain;
+    std::cout << "wrote " << args.output << " (" << to_string(*format) << ")\n";
+    return;
+  }
+  if (args.explain) std::cerr << noise.explain;
+  std::cout << text;
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app) {
+  auto args = std::make_shared<ConvertArguments>();
+  CLI::App* command = app.add_subcommand(
+      "convert",
+      "continuous noise (data sheet or typed terms) -> discrete filter covariances at a rate, "
+      "exported for kalibr, openvins, vins-fusion, gtsam, px4 or json");
+  command->add_option("--spec", args->spec, "data sheet: a YAML file or a name from `specs list`");
+  command->add_option("--noise-density", args->noise_density,
+                      "printed noise density ND, e.g. \"0.015 deg/s/sqrt(Hz)\" or \"70 ug/sqrt(Hz)\"");
+  command->add_option("--bias-stability", args->bias_stability,
+                      "in-run bias stability (ADEV floor), e.g. \"3 deg/h\" or \"0.05 mg\"");
+  command->add_option("--random-walk", args->random_walk,
+                      "rate random walk K, e.g. \"0.02 deg/h/sqrt(h)\"");
+  command->add_option("--sensor", args->sensor, "gyro | accel (for the typed terms)")
+      ->capture_default_str();
+  command->add_option("--rate", args->rate, "filter / IMU rate, e.g. 200 or \"200 Hz\"");
+  command->add_option("--bias-model", args->bias_model, "rw (random walk) | gm (Gauss-Markov)")
+      ->capture_default_str();
+  command->add_option("--tref", args->tref,
+                      "time after which the bias stability is reached (rw), e.g. 100s")
+      ->capture_default_str();
+  command->add_option("--tau-min", args->tau_min,
+                      "tau of the ADEV minimum for --bias-model gm (default: --tref)");
+  command->add_option("--inflate", args->inflate,
+                      "inflation factor F: densities and sigmas x F, variances x F^2")
+      ->capture_default_str();
+  command->add_option("--density-convention", args->convention,
+                      "two-sided (N = ND, Kalibr) | one-sided (N = ND/sqrt(2))")
+      ->capture_default_str();
+  command->add_option("--to,--format", args->to,
+                      "kalibr | openvins | vins-fusion | gtsam | px4 | json (default: print the "
+                      "arithmetic)");
+  command->add_flag("--explain", args->explain,
+                    "also print the arithmetic (to stderr when the export goes to stdout)");
+  command->add_option("-o,--output", args->output, "write the export to FILE (atomically)");
+  command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->callback([args] { run_convert(*args); });
+}
+
+}  // namespace sigmatau::cli

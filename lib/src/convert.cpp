@@ -1,0 +1,398 @@
+// Continuous-time noise terms -> discrete-time covariances at a filter rate, with the arithmetic.
+//
+// Glossary (SI, "unit" = rad/s for a gyro, m/s^2 for an accelerometer):
+//   f_s   filter / sample rate [Hz], T_s = 1/f_s [s]
+//   ND    printed noise density [unit/sqrt(Hz)]; N white-noise density (Allan / Kalibr) [same]
+//   B     flicker coefficient (NoiseTerms::bias_instability) [unit]; B_ds = 0.664 B the printed
+//         in-run bias stability (ADEV floor)
+//   K     rate random walk [unit/s/sqrt(Hz) = unit/sqrt(s)]
+//   T_ref time after which a random walk reaches B_ds [s]; tau_min the tau of the ADEV minimum
+//   phi   GM transition exp(-T_s/T_c); q GM per-step variance sigma^2 (1 - phi^2)
+//   F     inflation factor (densities and sigmas x F, variances x F^2)
+#include "sigmatau/convert.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/units.hpp"
+
+namespace sigmatau {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+/// Tolerance for "symmetric with unit diagonal" of a correlation matrix (round-off of values
+/// typed with a few digits is far larger than this is strict).
+constexpr double kCorrelationTolerance = 1e-9;
+
+std::string num(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+std::string rate_unit(Sensor s) { return s == Sensor::gyro ? "rad/s" : "m/s^2"; }
+std::string density_unit(Sensor s) {
+  return s == Sensor::gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
+}
+std::string rw_unit(Sensor s) {
+  return s == Sensor::gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
+}
+
+/// " (= X deg/s)" for gyro values, "" for accelerometers: the numbers users know.
+std::string in_deg(Sensor s, double value_si, const char* unit, int power = 1) {
+  if (s != Sensor::gyro) return "";
+  return " (= " + num(value_si * std::pow(kRadToDeg, power)) + " " + unit + ")";
+}
+
+void check_correlation(const Eigen::Matrix3d& c, const char* what) {
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::abs(c(i, i) - 1) <= kCorrelationTolerance)) {
+      throw Error(std::string(what) + " correlation: found diagonal " + num(c(i, i)) +
+                  ", expected 1");
+    }
+    for (int j = 0; j < 3; ++j) {
+      if (!(std::abs(c(i, j) - c(j, i)) <= kCorrelationTolerance) || !(std::abs(c(i, j)) <= 1)) {
+        throw Error(std::string(what) +
+                    " correlation: expected a symmetric matrix with entries in [-1, 1]");
+      }
+    }
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(c);
+  if (!(solver.eigenvalues().minCoeff() >= -kCorrelationTolerance)) {
+    throw Error(std::string(what) + " correlation: expected a positive semi-definite matrix");
+  }
+}
+
+void check_options(const ConvertOptions& o) {
+  if (!(o.rate_hz > 0) || !std::isfinite(o.rate_hz)) {
+    throw Error("rate: found " + num(o.rate_hz) + " Hz, expected a rate > 0");
+  }
+  if (!(o.t_ref_s > 0) || !std::isfinite(o.t_ref_s)) {
+    throw Error("T_ref: found " + num(o.t_ref_s) + " s, expected a time > 0");
+  }
+  if (o.tau_min_s && (!(*o.tau_min_s > 0) || !std::isfinite(*o.tau_min_s))) {
+    throw Error("tau_min: found " + num(*o.tau_min_s) + " s, expected a time > 0");
+  }
+  if (!(o.inflate > 0) || !std::isfinite(o.inflate)) {
+    throw Error("inflation factor: found " + num(o.inflate) + ", expected a factor > 0");
+  }
+}
+
+Eigen::Matrix3d scaled(const Eigen::Vector3d& sigma, const Eigen::Matrix3d& correlation) {
+  return sigma.asDiagonal() * correlation * sigma.asDiagonal();
+}
+
+bool uniform(const Eigen::Vector3d& v) { return v(0) == v(1) && v(1) == v(2); }
+
+}  // namespace
+
+std::string_view to_string(DensityConvention convention) {
+  return convention == DensityConvention::two_sided ? "two-sided" : "one-sided";
+}
+
+DensityConvention parse_density_convention(std::string_view text) {
+  if (text == "two-sided") return DensityConvention::two_sided;
+  if (text == "one-sided") return DensityConvention::one_sided;
+  throw Error("density convention: found \"" + std::string(text) +
+              "\", expected two-sided or one-sided");
+}
+
+std::string_view to_string(BiasModel model) {
+  return model == BiasModel::random_walk ? "rw" : "gm";
+}
+
+BiasModel parse_bias_model(std::string_view text) {
+  if (text == "rw" || text == "random-walk") return BiasModel::random_walk;
+  if (text == "gm" || text == "gauss-markov") return BiasModel::gauss_markov;
+  throw Error("bias model: found \"" + std::string(text) + "\", expected rw or gm");
+}
+
+std::string_view to_string(BiasSource source) {
+  switch (source) {
+    case BiasSource::rate_random_walk: return "rate_random_walk";
+    case BiasSource::bias_stability: return "bias_stability";
+    case BiasSource::gauss_markov: return "gauss_markov";
+  }
+  return "?";
+}
+
+const TriadDiscrete* DiscreteNoise::triad(Sensor sensor) const {
+  const auto& t = sensor == Sensor::gyro ? gyro : accel;
+  return t ? &*t : nullptr;
+}
+
+TriadNoise uniform_triad(Sensor sensor, const NoiseTerms& terms) {
+  TriadNoise t;
+  t.sensor = sensor;
+  t.axes = {terms, terms, terms};
+  return t;
+}
+
+TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
+                                 DensityConvention convention) {
+  const SensorSheet* section = sheet.sensor(sensor);
+  if (!section) {
+    throw Error("data sheet " + sheet.name + " has no " + std::string(to_string(sensor)) +
+                " section");
+  }
+  NoiseTerms terms;
+  TriadNoise triad;
+  triad.sensor = sensor;
+  const auto describe = [](const SpecValue& v) {
+    const PrintedValue* p = v.nominal();
+    std::string which = v.typ && p == &*v.typ ? "typ" : (v.max && p == &*v.max ? "max" : "min");
+    return p->text + " (" + which + ")";
+  };
+  const SpecValue* arw = section->find(SpecField::random_walk);
+  const SpecValue* nd = section->find(SpecField::noise_density);
+  if (arw && arw->nominal()) {
+    terms.white = arw->nominal()->value_si;
+    triad.white_origin = std::string(sensor == Sensor::gyro ? "angle" : "velocity") +
+                         " random walk " + describe(*arw) +
+                         " is the Allan N itself (the density convention does not apply)";
+  } else if (nd && nd->nominal()) {
+    const double value = nd->nominal()->value_si;
+    if (convention == DensityConvention::two_sided) {
+      terms.white = value;
+      triad.white_origin = "noise density " + describe(*nd) + " read as N = ND (two-sided)";
+    } else {
+      terms.white = value / std::sqrt(2.0);
+      triad.white_origin =
+          "noise density " + describe(*nd) + " read as one-sided: N = ND / sqrt(2)";
+    }
+  }
+  std::string bias;
+  if (const SpecValue* bi = section->find(SpecField::bias_instability); bi && bi->nominal()) {
+    terms.bias_instability = bi->nominal()->value_si / kFlickerFloorFactor;
+    bias = "in-run bias stability " + describe(*bi) + " read as the ADEV floor 0.664 B";
+  }
+  if (const SpecValue* rrw = section->find(SpecField::rate_random_walk); rrw && rrw->nominal()) {
+    terms.rate_random_walk = rrw->nominal()->value_si;
+    bias += std::string(bias.empty() ? "" : "; ") + "rate random walk " + describe(*rrw);
+  }
+  triad.bias_origin = bias;
+  triad.axes = {terms, terms, terms};
+  return triad;
+}
+
+TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options) {
+  check_options(options);
+  check_correlation(triad.white_correlation, "white noise");
+  check_correlation(triad.bias_correlation, "bias");
+  const double fs = options.rate_hz;
+  const double ts = 1.0 / fs;
+  const double f = options.inflate;
+  const std::string sensor(to_string(triad.sensor));
+  TriadDiscrete out;
+  out.sensor = triad.sensor;
+
+  bool any_white = false;
+  for (const auto& a : triad.axes) any_white = any_white || a.white.has_value();
+  if (any_white) {
+    WhiteDiscrete w;
+    for (int i = 0; i < 3; ++i) {
+      const auto& n = triad.axes[static_cast<std::size_t>(i)].white;
+      if (!n) throw Error(sensor + ": white noise N is given on some axes but not on all");
+      w.density(i) = f * *n;
+      w.variance_per_sample(i) = w.density(i) * w.density(i) * fs;  // Q = N^2 f_s
+      w.sigma_per_sample(i) = w.density(i) * std::sqrt(fs);         // sigma = N sqrt(f_s)
+    }
+    w.q = scaled(w.sigma_per_sample, triad.white_correlation);
+    out.white = w;
+  }
+
+  // Bias: the same source on every axis (the first axis decides, the others must agree).
+  const NoiseTerms& a0 = triad.axes[0];
+  std::optional<BiasSource> source;
+  if (options.bias_model == BiasModel::random_walk) {
+    if (a0.rate_random_walk) source = BiasSource::rate_random_walk;
+    else if (a0.bias_instability) source = BiasSource::bias_stability;
+    else if (a0.gauss_markov) source = BiasSource::gauss_markov;
+  } else {
+    if (a0.gauss_markov) source = BiasSource::gauss_markov;
+    else if (a0.bias_instability) source = BiasSource::bias_stability;
+    else if (a0.rate_random_walk) {
+      throw Error(sensor + ": a Gauss-Markov bias needs a bias stability (or sigma and T_c); "
+                           "only a rate random walk K is given: use --bias-model rw");
+    }
+  }
+  if (source) {
+    BiasDiscrete b;
+    b.model = options.bias_model;
+    b.source = *source;
+    b.phi.setOnes();
+    b.tau_c_s.setZero();
+    b.sigma.setZero();
+    for (int i = 0; i < 3; ++i) {
+      const NoiseTerms& t = triad.axes[static_cast<std::size_t>(i)];
+      const auto missing = [&](const char* what) {
+        throw Error(sensor + ": " + what + " is given on some axes but not on all");
+      };
+      if (options.bias_model == BiasModel::random_walk) {
+        double k = 0;  // continuous random-walk density K
+        if (*source == BiasSource::rate_random_walk) {
+          if (!t.rate_random_walk) missing("rate random walk K");
+          k = *t.rate_random_walk;
+        } else if (*source == BiasSource::bias_stability) {
+          if (!t.bias_instability) missing("bias instability B");
+          k = kFlickerFloorFactor * *t.bias_instability / std::sqrt(options.t_ref_s);
+          b.t_ref_s = options.t_ref_s;
+        } else {
+          if (!t.gauss_markov) missing("Gauss-Markov {sigma, T_c}");
+          // Short-term slope of a GM: K = q_c = sqrt(2 sigma^2 / T_c) (THEORY.md section 2).
+          k = t.gauss_markov->sigma * std::sqrt(2.0 / t.gauss_markov->tau_c_s);
+        }
+        k *= f;
+        b.random_walk_density(i) = k;
+        b.variance_per_step(i) = k * k * ts;  // Q_bb = K^2 T_s
+      } else {
+        double sigma = 0, tau_c = 0;
+        if (*source == BiasSource::gauss_markov) {
+          if (!t.gauss_markov) missing("Gauss-Markov {sigma, T_c}");
+          sigma = t.gauss_markov->sigma;
+          tau_c = t.gauss_markov->tau_c_s;
+        } else {
+          if (!t.bias_instability) missing("bias instability B");
+          const double tau_min = options.tau_min_s.value_or(options.t_ref_s);
+          sigma = kFlickerFloorFactor * *t.bias_instability / kGaussMarkovPeakFactor;
+          tau_c = tau_min / kGaussMarkovPeakTau;
+          b.tau_min_s = tau_min;
+        }
+        if (!(sigma > 0) || !(tau_c > 0)) {
+          throw Error(sensor + ": Gauss-Markov sigma and T_c must be > 0");
+        }
+        sigma *= f;
+        const double phi = std::exp(-ts / tau_c);
+        b.phi(i) = phi;
+        b.tau_c_s(i) = tau_c;
+        b.sigma(i) = sigma;
+        b.variance_per_step(i) = sigma * sigma * (1 - phi * phi);  // q = sigma^2 (1 - phi^2)
+        b.random_walk_density(i) = std::sqrt(b.variance_per_step(i) * fs);
+      }
+      b.sigma_per_step(i) = std::sqrt(b.variance_per_step(i));
+    }
+    b.q = scaled(b.sigma_per_step, triad.bias_correlation);
+    out.bias = b;
+  }
+  return out;
+}
+
+std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
+                    const ConvertOptions& options) {
+  const Sensor s = triad.sensor;
+  const double fs = options.rate_hz;
+  const double ts = 1.0 / fs;
+  const double f = options.inflate;
+  const std::string u = rate_unit(s);
+  std::ostringstream o;
+  o << to_string(s) << ": f_s = " << num(fs) << " Hz (T_s = " << num(ts)
+    << " s), density convention " << to_string(options.convention)
+    << (options.convention == DensityConvention::two_sided ? " (N = ND)" : " (N = ND/sqrt(2))")
+    << ", inflation F = " << num(f) << (f == 1 ? "" : " (densities and sigmas x F, variances x F^2)")
+    << "\n";
+  const auto axes_of = [](const Eigen::Vector3d& v) {
+    return uniform(v) ? std::vector<int>{0} : std::vector<int>{0, 1, 2};
+  };
+  const auto label = [](const Eigen::Vector3d& v, int i) {
+    static const char* names[] = {"x", "y", "z"};
+    return uniform(v) ? std::string() : std::string(names[i]) + ": ";
+  };
+  if (r.white) {
+    const auto& w = *r.white;
+    o << "  white noise: " << (triad.white_origin.empty() ? "N given" : triad.white_origin)
+      << "\n";
+    for (int i : axes_of(w.density)) {
+      const double n0 = w.density(i) / f;
+      o << "    " << label(w.density, i) << "N = " << num(n0) << " " << density_unit(s)
+        << in_deg(s, n0, "deg/s/sqrt(Hz)");
+      if (f != 1) o << "; x F = " << num(w.density(i));
+      o << "\n    " << label(w.density, i) << "Q = N^2 f_s = (" << num(w.density(i)) << ")^2 x "
+        << num(fs) << " = " << num(w.variance_per_sample(i)) << " (" << u << ")^2"
+        << in_deg(s, w.variance_per_sample(i), "(deg/s)^2", 2) << "\n";
+      o << "    " << label(w.density, i) << "sigma = N sqrt(f_s) = " << num(w.density(i))
+        << " x sqrt(" << num(fs) << ") = " << num(w.sigma_per_sample(i)) << " " << u
+        << in_deg(s, w.sigma_per_sample(i), "deg/s") << "\n";
+    }
+  } else {
+    o << "  white noise: not given\n";
+  }
+  if (r.bias) {
+    const auto& b = *r.bias;
+    if (!triad.bias_origin.empty()) o << "  bias: " << triad.bias_origin << "\n";
+    for (int i : axes_of(b.variance_per_step)) {
+      const NoiseTerms& t = triad.axes[static_cast<std::size_t>(i)];
+      const std::string p = "    " + label(b.variance_per_step, i);
+      if (b.model == BiasModel::random_walk) {
+        if (b.source == BiasSource::rate_random_walk) {
+          o << p << "random walk from K = " << num(*t.rate_random_walk) << " " << rw_unit(s)
+            << in_deg(s, *t.rate_random_walk * 3600 * 60, "deg/h/sqrt(h)") << "\n";
+        } else if (b.source == BiasSource::bias_stability) {
+          const double bds = kFlickerFloorFactor * *t.bias_instability;
+          o << p << "random walk reaching B_ds = " << num(bds) << " " << u
+            << in_deg(s, bds * 3600, "deg/h") << " after T_ref = " << num(b.t_ref_s) << " s\n"
+            << p << "K = B_ds / sqrt(T_ref) = " << num(bds) << " / sqrt(" << num(b.t_ref_s)
+            << ") = " << num(bds / std::sqrt(b.t_ref_s)) << " " << rw_unit(s) << "\n";
+        } else {
+          o << p << "random walk with the short-term slope of the GM (sigma = "
+            << num(t.gauss_markov->sigma) << " " << u << ", T_c = "
+            << num(t.gauss_markov->tau_c_s) << " s): K = sigma sqrt(2/T_c) = "
+            << num(b.random_walk_density(i) / f) << " " << rw_unit(s) << "\n";
+        }
+        if (f != 1) o << p << "x F: K = " << num(b.random_walk_density(i)) << "\n";
+        o << p << "Q_bb = K^2 T_s = (" << num(b.random_walk_density(i)) << ")^2 x " << num(ts)
+          << " = " << num(b.variance_per_step(i)) << " (" << u << ")^2"
+          << in_deg(s, b.variance_per_step(i), "(deg/s)^2", 2) << " per step\n";
+      } else {
+        if (b.source == BiasSource::bias_stability) {
+          const double bds = kFlickerFloorFactor * *t.bias_instability;
+          o << p << "Gauss-Markov matched at its ADEV peak (0.6174 sigma at 1.892 T_c) to the "
+                    "floor B_ds = "
+            << num(bds) << " " << u << in_deg(s, bds * 3600, "deg/h")
+            << " at tau_min = " << num(b.tau_min_s) << " s"
+            << (options.tau_min_s ? "" : " (T_ref; no tau_min given)") << "\n"
+            << p << "sigma = B_ds / 0.6174 = " << num(b.sigma(i) / f) << " " << u
+            << ", T_c = tau_min / 1.892 = " << num(b.tau_c_s(i)) << " s\n";
+        } else {
+          o << p << "Gauss-Markov sigma = " << num(b.sigma(i) / f) << " " << u
+            << ", T_c = " << num(b.tau_c_s(i)) << " s\n";
+        }
+        if (f != 1) o << p << "x F: sigma = " << num(b.sigma(i)) << "\n";
+        o << p << "phi = exp(-T_s/T_c) = exp(-" << num(ts) << "/" << num(b.tau_c_s(i))
+          << ") = " << num(b.phi(i)) << "\n"
+          << p << "q = sigma^2 (1 - phi^2) = (" << num(b.sigma(i)) << ")^2 x (1 - "
+          << num(b.phi(i)) << "^2) = " << num(b.variance_per_step(i)) << " (" << u << ")^2"
+          << in_deg(s, b.variance_per_step(i), "(deg/s)^2", 2) << " per step\n";
+      }
+    }
+  } else {
+    o << "  bias: not given (no bias stability, rate random walk or Gauss-Markov term)\n";
+  }
+  const auto& axes = triad.axes[0];
+  if (axes.quantization || axes.rate_ramp || axes.sinusoid) {
+    o << "  not converted: quantization, rate ramp and sinusoid terms have no filter "
+         "covariance here\n";
+  }
+  return o.str();
+}
+
+DiscreteNoise convert_noise(const std::vector<TriadNoise>& triads, const ConvertOptions& options,
+                            std::string source) {
+  check_options(options);
+  DiscreteNoise out;
+  out.options = options;
+  out.source = std::move(source);
+  for (const auto& t : triads) {
+    auto& slot = t.sensor == Sensor::gyro ? out.gyro : out.accel;
+    if (slot) throw Error("two " + std::string(to_string(t.sensor)) + " triads to convert");
+    slot = discretize(t, options);
+    out.explain += explain(t, *slot, options);
+  }
+  return out;
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,314 @@
+// Filter parameter files from converted noise (conventions and sources in filter_export.hpp).
+//
+// Glossary: N white-noise density [unit/sqrt(Hz)], K bias random-walk density [unit/s/sqrt(Hz)],
+// f_s IMU rate [Hz], dt_ekf PX4 EKF2 prediction interval [s].
+#include "sigmatau/filter_export.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau {
+namespace {
+
+/// Documented PX4 parameter ranges (src/modules/ekf2/module.yaml, THEORY.md 5.5): values
+/// outside are written but flagged, since PX4 clamps or rejects them.
+struct Px4Range {
+  const char* name;
+  double min, max;
+};
+constexpr Px4Range kPx4GyrNoise{"EKF2_GYR_NOISE", 1e-4, 0.1};
+constexpr Px4Range kPx4AccNoise{"EKF2_ACC_NOISE", 0.01, 1.0};
+constexpr Px4Range kPx4GyrBNoise{"EKF2_GYR_B_NOISE", 0.0, 0.01};
+constexpr Px4Range kPx4AccBNoise{"EKF2_ACC_B_NOISE", 0.0, 0.01};
+
+std::string num(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.7g", v);
+  return buffer;
+}
+
+bool uniform(const Eigen::Vector3d& v) { return v(0) == v(1) && v(1) == v(2); }
+
+/// One number per triad: the largest axis (conservative), with a note when the axes differ.
+double worst(const Eigen::Vector3d& v, std::string& notes, const std::string& what) {
+  if (!uniform(v)) notes += "# " + what + ": axes differ, the largest axis is written\n";
+  return v.maxCoeff();
+}
+
+std::string header(const DiscreteNoise& n, const std::string& format_line) {
+  std::ostringstream o;
+  o << "# " << format_line << "\n";
+  o << "# written by sigmatau from " << (n.source.empty() ? "given noise terms" : n.source)
+    << "\n";
+  o << "# IMU rate " << num(n.options.rate_hz) << " Hz; density convention "
+    << to_string(n.options.convention) << "; inflation factor " << num(n.options.inflate)
+    << "; bias model " << to_string(n.options.bias_model) << "\n";
+  return o.str();
+}
+
+/// Continuous densities per triad for the Kalibr-style formats; "" when absent.
+struct Densities {
+  bool white = false, bias = false;
+  double n = 0, k = 0;
+};
+
+Densities densities(const TriadDiscrete* t, std::string& notes, const std::string& name) {
+  Densities d;
+  if (!t) return d;
+  if (t->white) {
+    d.white = true;
+    d.n = worst(t->white->density, notes, name + " noise density");
+  }
+  if (t->bias) {
+    d.bias = true;
+    d.k = worst(t->bias->random_walk_density, notes, name + " random walk");
+    if (t->bias->model == BiasModel::gauss_markov) {
+      notes += "# " + name +
+               " bias: Gauss-Markov has no counterpart here; the random walk with the same "
+               "per-step variance is written\n";
+    }
+  }
+  return d;
+}
+
+void require_any(const DiscreteNoise& n) {
+  if (!n.gyro && !n.accel) throw Error("nothing to export: neither gyro nor accel noise given");
+}
+
+std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptions& options) {
+  std::string notes;
+  const Densities g = densities(n.gyro ? &*n.gyro : nullptr, notes, "gyroscope");
+  const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
+  std::ostringstream o;
+  const std::string indent = openvins ? "  " : "";
+  if (openvins) o << "%YAML:1.0\n";
+  o << header(n, openvins ? "OpenVINS kalibr_imu_chain.yaml (continuous-time densities)"
+                          : "Kalibr imu.yaml (continuous-time densities)");
+  o << notes;
+  auto line = [&](const char* key, bool present, double v, const char* unit) {
+    if (present) {
+      o << indent << key << ": " << num(v) << "  # [" << unit << "]\n";
+    } else {
+      o << indent << "# " << key << ": not given\n";
+    }
+  };
+  if (openvins) {
+    o << "imu0:\n"
+      << "  T_i_b:  # identity: IMU frame = body frame (replace with your calibration)\n"
+      << "    - [1.0, 0.0, 0.0, 0.0]\n    - [0.0, 1.0, 0.0, 0.0]\n"
+      << "    - [0.0, 0.0, 1.0, 0.0]\n    - [0.0, 0.0, 0.0, 1.0]\n";
+  } else {
+    o << "rostopic: " << options.rostopic << "\n";
+    o << "update_rate: " << num(n.options.rate_hz) << "  # [Hz]\n";
+  }
+  line("accelerometer_noise_density", a.white, a.n, "m/s^2/sqrt(Hz)");
+  line("accelerometer_random_walk", a.bias, a.k, "m/s^3/sqrt(Hz)");
+  line("gyroscope_noise_density", g.white, g.n, "rad/s/sqrt(Hz)");
+  line("gyroscope_random_walk", g.bias, g.k, "rad/s^2/sqrt(Hz)");
+  if (openvins) {
+    o << "  rostopic: " << options.rostopic << "\n";
+    o << "  time_offset: 0.0\n";
+    o << "  update_rate: " << num(n.options.rate_hz) << "  # [Hz]\n";
+  }
+  return o.str();
+}
+
+std::string vins(const DiscreteNoise& n) {
+  std::string notes;
+  const Densities g = densities(n.gyro ? &*n.gyro : nullptr, notes, "gyroscope");
+  const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
+  const double fs = n.options.rate_hz;
+  std::ostringstream o;
+  o << header(n, "VINS-Fusion / VINS-Mono IMU noise (merge into your config yaml)");
+  o << "# midpoint propagation: Var(dtheta) = 0.5 gyr_n^2 dt^2, Var(db) = gyr_w^2 dt^2 per IMU "
+       "step dt = 1/f_s,\n"
+    << "# so gyr_n = N sqrt(2 f_s) and gyr_w = K sqrt(f_s) (accelerometer likewise)\n";
+  o << notes;
+  auto line = [&](const char* key, bool present, double v, const char* unit, const char* what) {
+    if (present) {
+      o << key << ": " << num(v) << "  # [" << unit << "] " << what << "\n";
+    } else {
+      o << "# " << key << ": not given\n";
+    }
+  };
+  line("acc_n", a.white, a.n * std::sqrt(2 * fs), "m/s^2", "accelerometer measurement noise");
+  line("gyr_n", g.white, g.n * std::sqrt(2 * fs), "rad/s", "gyroscope measurement noise");
+  line("acc_w", a.bias, a.k * std::sqrt(fs), "m/s^3", "accelerometer bias random walk");
+  line("gyr_w", g.bias, g.k * std::sqrt(fs), "rad/s^2", "gyroscope bias random walk");
+  return o.str();
+}
+
+std::string gtsam(const DiscreteNoise& n) {
+  std::ostringstream o;
+  const double fs = n.options.rate_hz;
+  o << header(n, "GTSAM PreintegrationParams / PreintegrationCombinedParams (continuous-time "
+                 "covariances)");
+  o << "# GTSAM multiplies the measurement covariances by 1/dt and the bias covariances by dt "
+       "itself\n";
+  auto matrix = [&](const char* key, const Eigen::Matrix3d* m, const char* unit,
+                    const char* what) {
+    if (!m) {
+      o << "# " << key << ": not given\n";
+      return;
+    }
+    o << key << ":  # [" << unit << "] " << what << "\n";
+    for (int i = 0; i < 3; ++i) {
+      o << "  - [" << num((*m)(i, 0)) << ", " << num((*m)(i, 1)) << ", " << num((*m)(i, 2))
+        << "]\n";
+    }
+  };
+  // Continuous covariances from the discrete ones: white Q_d = Q_c f_s, bias Q_d = Q_c / f_s.
+  std::optional<Eigen::Matrix3d> gw, aw, gb, ab;
+  std::string notes;
+  if (n.gyro && n.gyro->white) gw = n.gyro->white->q / fs;
+  if (n.accel && n.accel->white) aw = n.accel->white->q / fs;
+  if (n.gyro && n.gyro->bias) gb = n.gyro->bias->q * fs;
+  if (n.accel && n.accel->bias) ab = n.accel->bias->q * fs;
+  for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
+    if (t && t->bias && t->bias->model == BiasModel::gauss_markov) {
+      notes += "# " + std::string(to_string(t->sensor)) +
+               " bias: Gauss-Markov has no counterpart here; the random walk with the same "
+               "per-step variance is written\n";
+    }
+  }
+  o << notes;
+  matrix("gyroscopeCovariance", gw ? &*gw : nullptr, "(rad/s)^2/Hz", "N^2 (white noise)");
+  matrix("accelerometerCovariance", aw ? &*aw : nullptr, "(m/s^2)^2/Hz", "N^2 (white noise)");
+  matrix("biasOmegaCovariance", gb ? &*gb : nullptr, "(rad/s^2)^2/Hz",
+         "K^2 (gyro bias random walk, CombinedImuFactor)");
+  matrix("biasAccCovariance", ab ? &*ab : nullptr, "(m/s^3)^2/Hz",
+         "K^2 (accelerometer bias random walk, CombinedImuFactor)");
+  o << "# integrationCovariance is not a property of the IMU: choose it for your integration "
+       "error\n";
+  return o.str();
+}
+
+std::string px4(const DiscreteNoise& n, const ExportOptions& options) {
+  const double dt = options.px4_predict_interval_s;
+  if (!(dt > 0)) throw Error("PX4 prediction interval: expected a time > 0");
+  std::string notes;
+  const Densities g = densities(n.gyro ? &*n.gyro : nullptr, notes, "gyroscope");
+  const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
+  std::ostringstream o;
+  o << header(n, "PX4 EKF2 IMU noise parameters (nsh / startup script)");
+  o << "# EKF2 integrates the IMU to its prediction interval dt = " << num(dt)
+    << " s (EKF2_PREDICT_US = " << num(dt * 1e6) << " us)\n"
+    << "# and adds (dt x NOISE)^2 per step: NOISE = N / sqrt(dt), B_NOISE = K / sqrt(dt)\n";
+  o << notes;
+  auto line = [&](const Px4Range& range, bool present, double v, const char* unit) {
+    if (!present) {
+      o << "# " << range.name << ": not given\n";
+      return;
+    }
+    o << "param set " << range.name << " " << num(v) << "  # [" << unit << "]";
+    if (!(v >= range.min && v <= range.max)) {
+      o << " outside the documented range " << num(range.min) << " .. " << num(range.max);
+    }
+    o << "\n";
+  };
+  const double root = std::sqrt(dt);
+  line(kPx4GyrNoise, g.white, g.n / root, "rad/s");
+  line(kPx4AccNoise, a.white, a.n / root, "m/s^2");
+  line(kPx4GyrBNoise, g.bias, g.k / root, "rad/s^2");
+  line(kPx4AccBNoise, a.bias, a.k / root, "m/s^3");
+  return o.str();
+}
+
+nlohmann::json vector_or_scalar(const Eigen::Vector3d& v) {
+  if (uniform(v)) return v(0);
+  return nlohmann::json::array({v(0), v(1), v(2)});
+}
+
+nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) rows.push_back({m(i, 0), m(i, 1), m(i, 2)});
+  return rows;
+}
+
+std::string json(const DiscreteNoise& n) {
+  nlohmann::json doc;
+  doc["rate_hz"] = n.options.rate_hz;
+  doc["density_convention"] = std::string(to_string(n.options.convention));
+  doc["inflate"] = n.options.inflate;
+  doc["source"] = n.source;
+  for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
+    if (!t) continue;
+    const std::string unit = t->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
+    nlohmann::json sensor = nlohmann::json::object();
+    if (t->white) {
+      const auto& w = *t->white;
+      sensor["white_noise"] = {{"density", vector_or_scalar(w.density)},
+                               {"variance_per_sample", vector_or_scalar(w.variance_per_sample)},
+                               {"sigma_per_sample", vector_or_scalar(w.sigma_per_sample)},
+                               {"Q", matrix_json(w.q)},
+                               {"unit", unit}};
+    }
+    if (t->bias) {
+      const auto& b = *t->bias;
+      nlohmann::json bias = {{"model", std::string(to_string(b.model))},
+                             {"source", std::string(to_string(b.source))},
+                             {"variance_per_step", vector_or_scalar(b.variance_per_step)},
+                             {"sigma_per_step", vector_or_scalar(b.sigma_per_step)},
+                             {"random_walk_density", vector_or_scalar(b.random_walk_density)},
+                             {"Q", matrix_json(b.q)},
+                             {"unit", unit}};
+      if (b.model == BiasModel::random_walk) {
+        if (b.source == BiasSource::bias_stability) bias["t_ref_s"] = b.t_ref_s;
+      } else {
+        bias["phi"] = vector_or_scalar(b.phi);
+        bias["tau_c_s"] = vector_or_scalar(b.tau_c_s);
+        bias["sigma"] = vector_or_scalar(b.sigma);
+        if (b.source == BiasSource::bias_stability) bias["tau_min_s"] = b.tau_min_s;
+      }
+      sensor["bias"] = bias;
+    }
+    doc[std::string(to_string(t->sensor))] = sensor;
+  }
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace
+
+ExportFormat parse_export_format(std::string_view text) {
+  if (text == "kalibr") return ExportFormat::kalibr;
+  if (text == "openvins") return ExportFormat::openvins;
+  if (text == "vins-fusion" || text == "vins") return ExportFormat::vins_fusion;
+  if (text == "gtsam") return ExportFormat::gtsam;
+  if (text == "px4") return ExportFormat::px4;
+  if (text == "json") return ExportFormat::json;
+  throw Error("export format: found \"" + std::string(text) +
+              "\", expected kalibr, openvins, vins-fusion, gtsam, px4 or json");
+}
+
+std::string_view to_string(ExportFormat format) {
+  switch (format) {
+    case ExportFormat::kalibr: return "kalibr";
+    case ExportFormat::openvins: return "openvins";
+    case ExportFormat::vins_fusion: return "vins-fusion";
+    case ExportFormat::gtsam: return "gtsam";
+    case ExportFormat::px4: return "px4";
+    case ExportFormat::json: return "json";
+  }
+  return "?";
+}
+
+std::string export_filter_config(const DiscreteNoise& noise, ExportFormat format,
+                                 const ExportOptions& options) {
+  require_any(noise);
+  switch (format) {
+    case ExportFormat::kalibr: return kalibr_like(noise, false, options);
+    case ExportFormat::openvins: return kalibr_like(noise, true, options);
+    case ExportFormat::vins_fusion: return vins(noise);
+    case ExportFormat::gtsam: return gtsam(noise);
+    case ExportFormat::px4: return px4(noise, options);
+    case ExportFormat::json: return json(noise);
+  }
+  throw Error("unknown export format");
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,40 @@
+# CLI regression cases for `sigmatau convert` (values: THEORY.md section 9).
+set(convert_out ${CMAKE_CURRENT_BINARY_DIR}/cli_convert)
+file(MAKE_DIRECTORY ${convert_out})
+
+# T1: 0.015 deg/s/sqrt(Hz) at 10 Hz -> 0.00225 (deg/s)^2, sigma 0.0474 deg/s.
+sigmatau_cli_test(NAME cli_convert_t1 EXIT 0
+  STDOUT "= 0\\.00225 \\(deg/s\\)\\^2.*= 0\\.0474342 deg/s"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 10)
+sigmatau_cli_test(NAME cli_convert_t1_one_sided EXIT 0
+  STDOUT "one-sided.*= 0\\.001125 \\(deg/s\\)\\^2"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 10 --density-convention one-sided)
+# T2: 3 deg/h after T_ref = 100 s at 100 Hz -> 6.944e-11 (deg/s)^2.
+sigmatau_cli_test(NAME cli_convert_t2 EXIT 0
+  STDOUT "Q_bb = K\\^2 T_s .* \\(= 6\\.94444e-11 \\(deg/s\\)\\^2\\) per step"
+  ARGS convert --bias-stability "3 deg/h" --rate "100 Hz" --tref 100s)
+sigmatau_cli_test(NAME cli_convert_gm EXIT 0
+  STDOUT "T_c = tau_min / 1\\.892 = 211\\.416 s"
+  ARGS convert --bias-stability "3 deg/h" --rate 100 --bias-model gm --tau-min 400s)
+sigmatau_cli_test(NAME cli_convert_spec_json EXIT 0
+  STDOUT "\"gyro\".*\"white_noise\".*\"rate_hz\": 200"
+  ARGS convert --spec tdk_mpu6050 --rate 200 --to json)
+# T9: PX4 density 1.5e-3 rad/s/sqrt(Hz) -> EKF2_GYR_NOISE 0.015.
+sigmatau_cli_test(NAME cli_convert_px4 EXIT 0 STDOUT "param set EKF2_GYR_NOISE 0\\.015 "
+  ARGS convert --noise-density "1.5e-3 rad/s/sqrt(Hz)" --rate 200 --to px4)
+sigmatau_cli_test(NAME cli_convert_kalibr_file EXIT 0 STDOUT "wrote .*imu\\.yaml \\(kalibr\\)"
+  ARGS convert --spec safran_stim300 --rate 125 --to kalibr --force -o ${convert_out}/imu.yaml)
+sigmatau_cli_test(NAME cli_convert_wrong_dimension EXIT 2
+  STDERR "--noise-density: expected angle/sqrt\\(time\\)"
+  ARGS convert --noise-density "3 deg/h" --rate 100)
+sigmatau_cli_test(NAME cli_convert_no_rate EXIT 2 STDERR "--rate is required"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)")
+sigmatau_cli_test(NAME cli_convert_bad_format EXIT 2 STDERR "expected kalibr, openvins"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 10 --to rovio)
+sigmatau_cli_test(NAME cli_convert_gm_from_k EXIT 2 STDERR "use --bias-model rw"
+  ARGS convert --random-walk "0.02 deg/h/sqrt(h)" --rate 10 --bias-model gm)
+sigmatau_cli_test(NAME cli_convert_nothing EXIT 2 STDERR "nothing to convert"
+  ARGS convert --spec st_lsm6dso --rate 100)
+sigmatau_cli_test(NAME cli_convert_no_output_without_force EXIT 2
+  STDERR "exists; use --force" NO_FILE ${convert_out}/never.yaml
+  ARGS convert --spec safran_stim300 --rate 125 --to kalibr -o ${PROJECT_SOURCE_DIR}/specs/safran_stim300.yaml)

@@ -1,0 +1,176 @@
+// Exporters against hand-computed files (tests/data/exports, README there gives the arithmetic),
+// and THEORY.md T9 (PX4 defaults <-> densities).
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
+#include "test_support.hpp"
+
+using namespace sigmatau;
+using sigmatau::test::test_data_dir;
+
+namespace {
+
+/// The hand files carry 7 significant digits (or exact values): rtol 1e-6.
+constexpr double kHandDigits = 1e-6;
+
+std::string read(const std::string& name) {
+  std::ifstream in(test_data_dir() / "exports" / name);
+  REQUIRE(in.good());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Splits text into numbers and other non-space runs.
+std::vector<std::string> tokens(const std::string& text) {
+  static const std::regex token(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?|[^\s\d.+-]+|[.+-])");
+  std::vector<std::string> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), token);
+       it != std::sregex_iterator(); ++it) {
+    out.push_back(it->str());
+  }
+  return out;
+}
+
+bool is_number(const std::string& t) {
+  return !t.empty() && (std::isdigit(static_cast<unsigned char>(t.back())) != 0);
+}
+
+/// Words must match exactly, numbers within rtol.
+void check_same_text(const std::string& actual, const std::string& expected) {
+  INFO("actual:\n" << actual);
+  const auto a = tokens(actual), e = tokens(expected);
+  REQUIRE(a.size() == e.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    INFO("token " << i << ": " << a[i] << " vs expected " << e[i]);
+    if (is_number(e[i]) && is_number(a[i])) {
+      const double x = std::stod(a[i]), y = std::stod(e[i]);
+      CHECK(std::abs(x - y) <= kHandDigits * std::abs(y));
+    } else {
+      CHECK(a[i] == e[i]);
+    }
+  }
+}
+
+void check_same_json(const nlohmann::json& a, const nlohmann::json& e, const std::string& path) {
+  INFO(path);
+  if (e.is_number()) {
+    REQUIRE(a.is_number());
+    const double x = a.get<double>(), y = e.get<double>();
+    CHECK(std::abs(x - y) <= kHandDigits * std::abs(y));
+  } else if (e.is_object()) {
+    REQUIRE(a.is_object());
+    CHECK(a.size() == e.size());
+    for (const auto& [key, value] : e.items()) {
+      REQUIRE(a.contains(key));
+      check_same_json(a[key], value, path + "." + key);
+    }
+  } else if (e.is_array()) {
+    REQUIRE(a.is_array());
+    REQUIRE(a.size() == e.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      check_same_json(a[i], e[i], path + "[" + std::to_string(i) + "]");
+    }
+  } else {
+    CHECK(a == e);
+  }
+}
+
+/// The input of the hand files: 200 Hz, F = 1, rw from K (tests/data/exports/README.md).
+DiscreteNoise reference_noise() {
+  NoiseTerms g, a;
+  g.white = 2e-4;
+  g.rate_random_walk = 3e-6;
+  a.white = 2e-3;
+  a.rate_random_walk = 4e-5;
+  ConvertOptions o;
+  o.rate_hz = 200;
+  return convert_noise({uniform_triad(Sensor::gyro, g), uniform_triad(Sensor::accel, a)}, o,
+                       "test input");
+}
+
+}  // namespace
+
+TEST_CASE("each exporter matches its hand-computed file") {
+  const DiscreteNoise noise = reference_noise();
+  SUBCASE("kalibr") {
+    check_same_text(export_filter_config(noise, ExportFormat::kalibr), read("kalibr.yaml"));
+  }
+  SUBCASE("openvins") {
+    check_same_text(export_filter_config(noise, ExportFormat::openvins), read("openvins.yaml"));
+  }
+  SUBCASE("vins-fusion") {
+    check_same_text(export_filter_config(noise, ExportFormat::vins_fusion),
+                    read("vins-fusion.yaml"));
+  }
+  SUBCASE("gtsam") {
+    check_same_text(export_filter_config(noise, ExportFormat::gtsam), read("gtsam.yaml"));
+  }
+  SUBCASE("px4") {
+    check_same_text(export_filter_config(noise, ExportFormat::px4), read("px4.txt"));
+  }
+  SUBCASE("json") {
+    check_same_json(nlohmann::json::parse(export_filter_config(noise, ExportFormat::json)),
+                    nlohmann::json::parse(read("json.json")), "$");
+  }
+}
+
+TEST_CASE("json for a Gauss-Markov bias with inflation matches its hand-computed file") {
+  NoiseTerms g;
+  g.bias_instability = (3.0 / 3600 * std::numbers::pi / 180) / kFlickerFloorFactor;
+  ConvertOptions o;
+  o.rate_hz = 100;
+  o.bias_model = BiasModel::gauss_markov;
+  o.tau_min_s = 100;
+  o.inflate = 2;
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "test input");
+  check_same_json(nlohmann::json::parse(export_filter_config(noise, ExportFormat::json)),
+                  nlohmann::json::parse(read("json_gm.json")), "$");
+  // The random-walk formats say that they write the equivalent random walk.
+  CHECK(export_filter_config(noise, ExportFormat::kalibr).find("Gauss-Markov has no counterpart") !=
+        std::string::npos);
+}
+
+TEST_CASE("T9: PX4 defaults 0.015 rad/s and 1e-3 rad/s^2 are densities 1.5e-3 and 1e-4") {
+  // THEORY.md section 9 T9 / 5.5: density = EKF2 value x sqrt(0.01 s). Inverted here: the
+  // densities 1.5e-3 rad/s/sqrt(Hz) and 1e-4 rad/s^2/sqrt(Hz) export as 0.015 and 0.001.
+  NoiseTerms g;
+  g.white = 1.5e-3;
+  g.rate_random_walk = 1e-4;
+  ConvertOptions o;
+  o.rate_hz = 1000;  // EKF2 works at its own prediction interval: the IMU rate does not enter
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "T9");
+  const std::string text = export_filter_config(noise, ExportFormat::px4);
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex(R"(EKF2_GYR_NOISE (\S+))")));
+  SIGMATAU_CHECK_REL(std::stod(m[1]), 0.015, kHandDigits);  // printed with 7 digits
+  REQUIRE(std::regex_search(text, m, std::regex(R"(EKF2_GYR_B_NOISE (\S+))")));
+  SIGMATAU_CHECK_REL(std::stod(m[1]), 1e-3, kHandDigits);
+  CHECK(text.find("# EKF2_ACC_NOISE: not given") != std::string::npos);
+}
+
+TEST_CASE("PX4 values outside the documented ranges are flagged") {
+  NoiseTerms g;
+  g.white = 0.1;  // 1 rad/s per step at dt = 0.01 s: above the 0.1 maximum
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "range");
+  CHECK(export_filter_config(noise, ExportFormat::px4).find("outside the documented range") !=
+        std::string::npos);
+}
+
+TEST_CASE("format names parse and an empty conversion cannot be exported") {
+  CHECK(parse_export_format("vins-fusion") == ExportFormat::vins_fusion);
+  CHECK(parse_export_format("px4") == ExportFormat::px4);
+  CHECK_THROWS_AS(parse_export_format("rovio"), Error);
+  DiscreteNoise empty;
+  empty.options.rate_hz = 100;
+  CHECK_THROWS_AS(export_filter_config(empty, ExportFormat::json), Error);
+}
