@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   sigmatau::cli::add_simulate_command(app);
   sigmatau::cli::add_units_command(app);
   sigmatau::cli::add_psd_command(app);
+  sigmatau::cli::add_check_command(app);
   sigmatau::cli::add_specs_command(app);
   sigmatau::cli::add_convert_command(app);
   try {
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const sigmatau::cli::ExitStatus& status) {
+    return status.code;
   } catch (const sigmatau::Error& e) {
     std::cerr << "sigmatau: error: " << e.what() << "\n";
     return 2;

@@ -5,6 +5,14 @@
 
 namespace sigmatau::cli {
 
+/// Thrown by a verb after its output is complete to end with a non-zero status that is not an
+/// error (e.g. `check` exits 1 when a compliance check failed).
+struct ExitStatus {
+  int code;
+};
+
+void add_check_command(CLI::App& app);
+
 void add_adev_command(CLI::App& app);
 void add_psd_command(CLI::App& app);
 void add_units_command(CLI::App& app);

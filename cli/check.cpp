@@ -1,0 +1,150 @@
+// `sigmatau check --spec SHEET RESULT.json`: pass / marginal / fail against a data sheet.
+// Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line).
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+#include "sigmatau/compliance.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/resources.hpp"
+#include "sigmatau/units.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct CheckArguments {
+  std::string spec;
+  std::string result;
+  std::string convention = "two-sided";
+  std::string format = "table";
+  std::string output;
+  bool force = false;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// A value in the printed unit when it converts, else in SI.
+std::string in_printed_unit(double value_si, const std::string& unit) {
+  char buffer[64];
+  if (!unit.empty()) {
+    try {
+      const Unit u = parse_unit(unit);
+      std::snprintf(buffer, sizeof buffer, "%.4g %s", value_si / u.factor, unit.c_str());
+      return buffer;
+    } catch (const Error&) {
+    }
+  }
+  std::snprintf(buffer, sizeof buffer, "%.4g SI", value_si);
+  return buffer;
+}
+
+std::string label(const ComplianceItem& item) {
+  return std::string(to_string(item.measured.sensor)) + " " +
+         std::string(to_string(item.measured.quantity)) + " " + item.measured.axis;
+}
+
+void run_check(const CheckArguments& args) {
+  if (args.format != "table" && args.format != "json") {
+    throw Error("--format must be table or json, got \"" + args.format + "\"");
+  }
+  if (!args.output.empty()) check_can_write(args.output, args.force);
+  const DataSheet sheet = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
+  const auto measured = measured_parameters_from_json(read_text(args.result), args.result);
+  ComplianceOptions options;
+  options.convention = parse_density_convention(args.convention);
+  const auto items = check_compliance(measured, sheet, options);
+
+  std::ostringstream out;
+  if (args.format == "json") {
+    nlohmann::json doc;
+    doc["tool"] = "sigmatau";
+    doc["version"] = SIGMATAU_VERSION;
+    doc["spec"] = {{"name", sheet.name}, {"part", sheet.part}, {"manufacturer", sheet.manufacturer}};
+    doc["density_convention"] = std::string(to_string(options.convention));
+    doc["items"] = nlohmann::json::array();
+    for (const auto& item : items) {
+      nlohmann::json j = {{"sensor", std::string(to_string(item.measured.sensor))},
+                          {"quantity", std::string(to_string(item.measured.quantity))},
+                          {"axis", item.measured.axis},
+                          {"value", item.measured.value},
+                          {"ci_low", item.measured.ci_low},
+                          {"ci_high", item.measured.ci_high},
+                          {"verdict", std::string(to_string(item.verdict))}};
+      if (item.verdict != Verdict::not_specified) {
+        j["spec_field"] = item.spec_field;
+        j["limit_text"] = item.limit_text;
+        j["limit_is_typical"] = item.limit_is_typical;
+        j["limit_si"] = item.limit_si;
+        j["compared"] = item.compared;
+        j["compared_upper"] = item.compared_upper;
+        j["margin"] = item.margin;
+        j["margin_upper"] = item.margin_upper;
+        j["rule"] = item.rule;
+      }
+      doc["items"].push_back(j);
+    }
+    doc["failed"] = any_failed(items);
+    out << doc.dump(1) << "\n";
+  } else {
+    out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
+        << args.result << "; pass: upper bound within the limit, marginal: estimate within but "
+        << "bound not, fail: estimate beyond\n";
+    char line[512];
+    std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8s %8s\n", "parameter",
+                  "verdict", "measured", "upper bound", "limit", "margin", "upper");
+    out << line;
+    for (const auto& item : items) {
+      if (item.verdict == Verdict::not_specified) {
+        std::snprintf(line, sizeof line, "%-36s %-12s\n", label(item).c_str(), "not specified");
+      } else {
+        std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8.3f %8.3f%s\n",
+                      label(item).c_str(), std::string(to_string(item.verdict)).c_str(),
+                      in_printed_unit(item.compared, item.limit_unit).c_str(),
+                      in_printed_unit(item.compared_upper, item.limit_unit).c_str(),
+                      (item.limit_text + (item.limit_is_typical ? " (typ)" : "")).c_str(),
+                      item.margin, item.margin_upper, "");
+      }
+      out << line;
+    }
+    out << (any_failed(items) ? "RESULT: FAIL\n" : "RESULT: no check failed\n");
+  }
+  if (args.output.empty()) {
+    std::cout << out.str();
+  } else {
+    write_file_atomically(args.output, out.str(), args.force);
+  }
+  if (any_failed(items)) throw ExitStatus{1};
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app) {
+  auto args = std::make_shared<CheckArguments>();
+  CLI::App* command = app.add_subcommand(
+      "check", "Compare measured parameters (fit, calibrate or analyze result) with a data sheet: "
+               "pass / marginal / fail; exit 1 when any check fails");
+  command->add_option("--spec", args->spec, "data sheet: a YAML file or a name from `sigmatau specs list`")
+      ->required();
+  command->add_option("RESULT", args->result, "a sigmatau fit / calibrate / analyze JSON result")
+      ->required();
+  command->add_option("--density-convention", args->convention,
+                      "how a printed noise density is read: two-sided (N = ND) or one-sided "
+                      "(N = ND/sqrt(2))")
+      ->capture_default_str();
+  command->add_option("--format", args->format, "table | json")->capture_default_str();
+  command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
+  command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->callback([args] { run_check(*args); });
+}
+
+}  // namespace sigmatau::cli

@@ -1,0 +1,93 @@
+#pragma once
+/// \file compliance.hpp
+/// Does a measured unit meet its data sheet? Each measured parameter with a matching data-sheet
+/// value gets a verdict and margins:
+///   pass      the upper confidence bound is within the limit,
+///   marginal  the estimate is within the limit but its upper bound is not,
+///   fail      the estimate exceeds the limit,
+///   not specified  the sheet prints no value for it.
+/// The limit is the printed max, else the typical value (said so in the item: a typical value
+/// is a population 1-sigma figure, not a guarantee; THEORY.md 8.3).
+///
+/// Conventions (the same as convert.hpp, so a sheet means one thing everywhere):
+///  - measured N against a printed noise density ND: N is compared with ND (two-sided, default)
+///    or ND / sqrt(2) (one-sided); against a printed ARW / VRW directly;
+///  - measured B (flicker coefficient) against a printed in-run bias stability: the printed
+///    value is the ADEV floor 0.664 B, so 0.664 B is compared with it;
+///  - offsets, gain errors, cross-axis terms and temperature coefficients by magnitude.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sigmatau/convert.hpp"
+#include "sigmatau/noise_model.hpp"
+#include "sigmatau/spec.hpp"
+
+namespace sigmatau {
+
+/// What was measured, in SI (the units of noise_model.hpp; ratios for gain and cross-axis).
+enum class MeasuredQuantity {
+  white_noise,            ///< N [rad/s/sqrt(Hz) | m/s^2/sqrt(Hz)]
+  bias_instability,       ///< B [rad/s | m/s^2]
+  rate_random_walk,       ///< K [rad/s^2/sqrt(Hz) | m/s^3/sqrt(Hz)]
+  bias,                   ///< turn-on bias / zero-rate offset b_i [rad/s | m/s^2]
+  scale_factor_error,     ///< s_i [1]
+  cross_axis,             ///< m_ij [1]
+  bias_temperature_coefficient,  ///< db/dT [rad/s/K | m/s^2/K]
+};
+std::string_view to_string(MeasuredQuantity quantity);
+
+/// One measured value with its confidence interval (SI).
+struct MeasuredParameter {
+  Sensor sensor = Sensor::gyro;
+  MeasuredQuantity quantity = MeasuredQuantity::white_noise;
+  std::string axis;  ///< "x", "y", "z", or "xy", "xz", ... for cross-axis terms
+  double value = 0;
+  double ci_low = 0;
+  double ci_high = 0;
+};
+
+enum class Verdict { pass, marginal, fail, not_specified };
+std::string_view to_string(Verdict verdict);
+
+/// The verdict on one measured parameter against one data-sheet field.
+struct ComplianceItem {
+  MeasuredParameter measured;
+  Verdict verdict = Verdict::not_specified;
+  std::string spec_field;       ///< data-sheet key compared with ("" when not specified)
+  std::string limit_text;       ///< as printed, e.g. "±20 deg/s" or "0.015 deg/s/sqrt(Hz)"
+  std::string limit_unit;       ///< the printed unit ("deg/s"), for showing values like the sheet
+  bool limit_is_typical = false;
+  double limit_si = 0;          ///< the limit in the units of `compared` (SI)
+  double compared = 0;          ///< the measured estimate as compared (e.g. |b|, 0.664 B) [SI]
+  double compared_upper = 0;    ///< its upper confidence bound as compared [SI]
+  double margin = 0;            ///< compared / limit (< 1 is within)
+  double margin_upper = 0;      ///< compared_upper / limit
+  std::string rule;             ///< one line: how the two were put on the same footing
+};
+
+struct ComplianceOptions {
+  DensityConvention convention = DensityConvention::two_sided;
+};
+
+/// Checks every parameter against `sheet`. Parameters of a sensor the sheet lacks, or with no
+/// matching field, come back as not_specified.
+std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter>& measured,
+                                             const DataSheet& sheet,
+                                             const ComplianceOptions& options = {});
+
+/// True when any item failed (the `check` exit code 1).
+bool any_failed(const std::vector<ComplianceItem>& items);
+
+/// Reads measured parameters from a sigmatau result file's JSON text: a `fit` result
+/// ({"channels":[{"name","quantity","parameters":{"N":{...},"B":...,"K":...}}]}), a `calibrate`
+/// result ({"accelerometer":{...},"gyroscope":{...}}), or an `analyze` results.json (which holds
+/// both under "fit" and "calibration"). Channel names gx/gy/gz and ax/ay/az (or quantity
+/// angular_rate / specific_force with a trailing x/y/z) give sensor and axis. Throws Error
+/// naming `file` on any other shape.
+std::vector<MeasuredParameter> measured_parameters_from_json(std::string_view json_text,
+                                                             const std::string& file);
+
+}  // namespace sigmatau
