@@ -31,12 +31,16 @@ struct DeviationPoint {
 
 /// Number of terms the estimator sums at averaging factor m for N phase points (0 when the
 /// statistic is undefined there). ADEV floor((N-1)/m)-1, OADEV N-2m, MDEV/TDEV N-3m+1,
-/// HDEV floor((N-1)/m)-2, OHDEV N-3m, TOTDEV N-2 (for 2m <= N-1... see allan.cpp).
+/// HDEV floor((N-1)/m)-2, OHDEV N-3m, TOTDEV N-2 (defined for 2m <= N-1, where Stable32 stops;
+/// the reflected series would allow more, but those windows would be mostly reflected data).
 std::int64_t term_count(Statistic statistic, std::int64_t m, std::int64_t n_phase_points);
 
 /// The statistic at each averaging factor in `m`. A factor with no terms (too few samples) is
-/// omitted from the result, never an exception; the result keeps the order of `m`.
-/// A constant input gives exactly 0.
+/// omitted from the result, never an exception; the result keeps the order of `m` (repeated
+/// factors are repeated). A constant input gives exactly 0. Throws Error if a factor is < 1.
+/// Accuracy: every difference is formed from window sums of the double-double phase, and sums of
+/// squares are blocked, so the result is within ~1e-15 relative of the exact statistic of the
+/// input (tests/test_allan_precision.cpp), whatever the offset or length of the data.
 std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statistic statistic,
                                               std::span<const std::int64_t> m);
 

@@ -34,8 +34,8 @@ std::string_view to_string(DataKind kind);
 
 class PhaseSeries {
  public:
-  /// From rate samples y_1..y_M taken every tau0_s seconds. Throws Error if tau0_s is not > 0
-  /// or a sample is not finite.
+  /// From rate samples y_1..y_M taken every tau0_s seconds. Throws Error if tau0_s is not a
+  /// finite number > 0, or naming the first sample (0-based index) that is not finite.
   static PhaseSeries from_rate(std::span<const double> y, double tau0_s);
   /// From increments (per-sample delta angle or delta velocity); the phase is their running sum.
   static PhaseSeries from_increments(std::span<const double> increments, double tau0_s);
@@ -58,7 +58,8 @@ class PhaseSeries {
   double x(std::int64_t k) const { return hi_[k] + lo_[k]; }
   /// Turns a phase difference over m samples into the deviation's unit (see file comment).
   double rate_scale(std::int64_t m) const;
-  /// The mean rate removed before integration, in the input unit (0 for phase input).
+  /// The mean rate removed before integration: in the input unit for rate input, input unit / s
+  /// (mean increment / tau0) for increment input, 0 for phase input.
   double mean_rate() const { return mean_rate_; }
 
   /// Raw double-double storage, for estimators that stream over it.

@@ -1,0 +1,41 @@
+#pragma once
+// Internal: the sums of squared phase differences behind every Allan-family estimator.
+// Every difference is formed from window sums W(k, m) = x[k+m] - x[k] of the double-double phase
+// (PhaseSeries::window_sum), never from absolute phase values, and every sum of squares is taken
+// in blocks (kLanes plain-double lanes per block, block totals carried in double-double).
+//
+// Glossary (0-based phase points x_0..x_{N-1}, L = N - 1, m = averaging factor):
+//   D2(n) = W(n+m, m) - W(n, m)                 = x[n+2m] - 2x[n+m] + x[n]   (Allan)
+//   D3(n) = D2(n+m) - D2(n)                     = x[n+3m] - 3x[n+2m] + 3x[n+m] - x[n] (Hadamard)
+//   V(j)  = sum_{i=j}^{j+m-1} D2(i)                                          (modified Allan)
+//   x*    the phase reflected at both ends (SP 1065 eq. 25): x*[-j] = 2x[0] - x[j],
+//         x*[L+j] = 2x[L] - x[L-j]                                            (total)
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sigmatau/phase_series.hpp"
+
+namespace sigmatau::detail {
+
+/// For each m (ascending, each with counts[t] >= 1 terms), sum_{n < counts[t]} D(n)^2 with
+/// D = D2 (order 2, OADEV) or D3 (order 3, OHDEV) and n = 0, 1, 2, ... (every start point).
+/// All factors are swept together, block by block, so the phase is read from memory about once
+/// per group of factors instead of once per factor.
+std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
+                                     std::span<const std::int64_t> m,
+                                     std::span<const std::int64_t> counts);
+
+/// sum_{k < count} D(k m)^2 with D = D2 (order 2, ADEV) or D3 (order 3, HDEV): stride m.
+double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::int64_t count);
+
+/// sum_{j < count} V(j)^2 (MDEV, TDEV), V carried by a compensated running sum.
+double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t count);
+
+/// The 2(m-1) terms of the total variance whose 2m-point window reaches past either end of the
+/// phase (i = 1..m-1 and i = L-m+1..L-1): sum of (x*[i-m] - 2x*[i] + x*[i+m])^2. The other
+/// N - 2m terms are exactly the OADEV terms. Requires 2m <= L.
+double total_boundary_sum(const PhaseSeries& series, std::int64_t m);
+
+}  // namespace sigmatau::detail
