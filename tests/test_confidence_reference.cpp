@@ -29,6 +29,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "sigmatau/allan.hpp"
+#include "sigmatau/allan_curve.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/phase_series.hpp"
 #include "test_support.hpp"
@@ -42,7 +43,9 @@ constexpr double kPrintedDigits = 1e-4;
 constexpr double kRoundedRatio = 2 * 5e-5;
 constexpr double kSmallEdfQuantile = 2e-4;
 constexpr double kTinyEdfQuantile = 6e-4;
-constexpr double kOcxoDeviation = 1.5e-3;
+// Stable32 read a slightly different copy of the OCXO record: its printed deviations differ from
+// ours by up to 1.8e-3 (measured in test_allan_reference.cpp, which uses 2e-3 for the same reason).
+constexpr double kOcxoDeviation = 2e-3;
 
 enum class Input { phase, fractional_frequency, frequency_10mhz };
 
@@ -253,7 +256,7 @@ void check_table(const Table& table, const PhaseSeries& series, Summary& summary
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& row = rows[i];
     if (row.min_sigma == 0 && row.max_sigma == 0) continue;  // no error bars in this run
-    const DeviationPoint& point = points[i];
+    DeviationPoint point = points[i];
     INFO(rel << " AF " << row.m << " S32 alpha " << row.alpha);
     const auto noise = identify_noise(series, table.statistic, row.m);
     const char* reason = known_reason(kKnownAlphaDifferences, table.data->dir, table.file, row.m);
@@ -267,7 +270,16 @@ void check_table(const Table& table, const PhaseSeries& series, Summary& summary
       continue;
     }
     const int alpha = reason == nullptr ? noise.alpha : row.alpha;
-    const double edf = equivalent_dof(table.statistic, alpha, row.m, series.size());
+    // Stable32 (1.60 and later) prints TOTDEV bias-corrected with the noise type of the row
+    // (allan_curve.hpp totvar_bias; the estimators' reference test confirms the convention).
+    if (table.statistic == Statistic::totdev) {
+      point.dev /= std::sqrt(totvar_bias(alpha, row.m, series));
+    }
+    // TOTDEV's Table 7 EDF counts the record in data points (M for frequency input), as
+    // compute_allan_curve does; Greenhall's EDF uses N phase points.
+    const double edf = equivalent_dof(
+        table.statistic, alpha, row.m,
+        table.statistic == Statistic::totdev ? record_points(series) : series.size());
     const Interval ci = chi_squared_interval(point.dev, edf, kConfidence);
     const double e_lo = ci.low / row.min_sigma - 1, e_hi = ci.high / row.max_sigma - 1;
     const double r_lo = (ci.low / point.dev) / (row.min_sigma / row.sigma) - 1;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -10,6 +11,34 @@
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
+namespace {
+
+/// Stable32 keeps the previous tau's noise type once few non-overlapping averages
+/// K = floor((N-1)/m) remain: K <= 9 for ADEV and HDEV, K <= 3 for TOTDEV, K <= 7 otherwise.
+/// Observed on every Stable32 table with error bars in ../shared/data (see
+/// tests/test_confidence_reference.cpp); a B1 ratio from so few averages is itself unreliable.
+std::int64_t kept_noise_threshold(Statistic statistic) {
+  switch (statistic) {
+    case Statistic::adev:
+    case Statistic::hdev: return 9;
+    case Statistic::totdev: return 3;
+    default: return 7;
+  }
+}
+
+}  // namespace
+
+std::int64_t record_points(const PhaseSeries& series) {
+  return series.kind() == DataKind::phase ? series.size() : series.size() - 1;
+}
+
+double totvar_bias(int alpha, std::int64_t m, const PhaseSeries& series) {
+  const double points = static_cast<double>(record_points(series));
+  double a = 0.0;
+  if (alpha == -1) a = 1.0 / (3.0 * std::log(2.0));
+  if (alpha <= -2) a = 0.75;
+  return 1.0 - a * static_cast<double>(m) / points;
+}
 
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level) {
@@ -21,8 +50,24 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
   AllanCurve curve;
   curve.statistic = statistic;
   curve.confidence_level = confidence_level;
-  for (const auto& point : compute_deviation(series, statistic, factors)) {
-    curve.points.push_back({point, confidence_for(series, statistic, point, confidence_level)});
+  for (DeviationPoint point : compute_deviation(series, statistic, factors)) {
+    ConfidencePoint confidence;
+    confidence.noise = identify_noise(series, statistic, point.m);
+    const std::int64_t averages = (series.size() - 1) / point.m;
+    if (!curve.points.empty() && averages <= kept_noise_threshold(statistic)) {
+      confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
+      confidence.noise.method = NoiseIdentification::Method::previous_tau;
+    }
+    if (statistic == Statistic::totdev) {
+      point.dev /= std::sqrt(totvar_bias(confidence.noise.alpha, point.m, series));
+    }
+    // TOTDEV's EDF (SP 1065 Table 7) is in terms of T / tau with T the record length, which
+    // Stable32 counts in data points (M for rate input); Greenhall's algorithm uses N phase points.
+    const std::int64_t edf_points =
+        statistic == Statistic::totdev ? record_points(series) : series.size();
+    confidence.edf = equivalent_dof(statistic, confidence.noise.alpha, point.m, edf_points);
+    confidence.interval = chi_squared_interval(point.dev, confidence.edf, confidence_level);
+    curve.points.push_back({point, confidence});
   }
   return curve;
 }

@@ -13,6 +13,16 @@
 
 namespace sigmatau {
 
+/// TOTVAR bias B = E[TOTVAR] / AVAR = 1 - a tau/T for the identified noise alpha (NIST SP 1065
+/// sec. 5.2.11): a = 0 for white FM and PM noise, 1/(3 ln 2) for flicker FM, 3/4 for random-walk
+/// FM. T is the record length as Stable32 takes it: (number of data points) x tau0, i.e. M tau0
+/// for rate or increment input and N tau0 for phase input.
+double totvar_bias(int alpha, std::int64_t m, const PhaseSeries& series);
+
+/// The record length in data points as Stable32 counts it: M for rate or increment input, N for
+/// phase input (used by totvar_bias and by TOTDEV's EDF).
+std::int64_t record_points(const PhaseSeries& series);
+
 /// One point: the deviation and its confidence interval (in the series' rate unit; TDEV in its
 /// phase unit).
 struct CurvePoint {
@@ -28,6 +38,9 @@ struct AllanCurve {
 
 /// The statistic at the averaging factors of `taus`, with intervals at `confidence_level`
 /// (in (0, 1); Error otherwise). Averaging factors with no terms are left out.
+/// Stable32's conventions are followed: TOTDEV is divided by sqrt(totvar_bias) with the noise
+/// identified at that tau, and once few averages remain the previous tau's noise type is kept
+/// (NoiseIdentification::Method::previous_tau).
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level);
 

@@ -26,7 +26,9 @@ namespace sigmatau {
 /// Identified power-law noise at one averaging factor.
 struct NoiseIdentification {
   int alpha = 0;             ///< integer exponent in [-2, 2]
-  enum class Method { lag1_acf, b1_ratio, assumed } method = Method::lag1_acf;
+  /// previous_tau: too few averages for a reliable estimate at this tau, so the noise type of
+  /// the previous (shorter) tau of the curve is kept, as Stable32 does (compute_allan_curve).
+  enum class Method { lag1_acf, b1_ratio, assumed, previous_tau } method = Method::lag1_acf;
 };
 
 /// Identifies the dominant power-law noise at averaging factor m the way Stable32 does: lag-1
