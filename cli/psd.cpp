@@ -223,7 +223,12 @@ void run_psd(const PsdArguments& args) {
       for (double p : plotted[c].psd) curve.y.push_back(p * unit.psd_from_si);
       plot.curves.push_back(std::move(curve));
       const double asd = densities[c].one_sided_asd;
-      plot.levels.push_back(asd * asd * unit.psd_from_si);
+      const double level = asd * asd * unit.psd_from_si;
+      PlotCurve line;
+      line.name = loaded.log.channel_names[c] + " noise density";
+      line.x = {densities[c].band_low_hz, densities[c].band_high_hz};
+      line.y = {level, level};
+      plot.lines.push_back(std::move(line));
     }
     render_spectrum_plot(plot, args.plot, args.force);
   }

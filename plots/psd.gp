@@ -1,28 +1,29 @@
-# sigmatau PSD plot: one-sided PSD per channel (log-binned), with the noise-density level.
-# Variables set by sigmatau (gnuplot -e): datafile, outfile, term, title_text, ylabel_text,
-# nchannels, names, levels (space-separated one-sided PSD levels of the noise density, or '').
-# Data file: one block per channel (two blank lines between): frequency psd.
+# sigmatau PSD plot: one-sided PSD per channel (log-binned), with dashed levels (measured noise
+# density, data-sheet noise density) as horizontal lines.
+# Variables set by sigmatau (gnuplot -e): datafile, linefile, outfile, term, title_text,
+# ylabel_text, nchannels, colors, nlines, linecolors.
+# Files: blocks separated by two blank lines, first line the quoted key title;
+# datafile columns: frequency psd; linefile columns: frequency level.
 
 if (term eq 'svg') {
-  set terminal svg size 1000,700 dynamic enhanced font 'Helvetica,18' background rgb 'white'
+  set terminal svg size 1100,700 dynamic enhanced font 'Helvetica,18' background rgb 'white'
 } else {
   if (term eq 'pdfcairo') {
-    set terminal pdfcairo size 10in,7in enhanced font 'Helvetica,14'
+    set terminal pdfcairo size 11in,7in enhanced font 'Helvetica,14'
   } else {
-    set terminal pngcairo size 1400,980 enhanced font 'Helvetica,20'
+    set terminal pngcairo size 1540,980 enhanced font 'Helvetica,20'
   }
 }
 set output outfile
-set title title_text
+set title title_text noenhanced
 set logscale xy
 set format x '10^{%L}'
 set format y '10^{%L}'
 set xlabel 'frequency [Hz]'
-set ylabel ylabel_text
+set ylabel ylabel_text noenhanced
 set grid xtics ytics mxtics mytics lc rgb '#dddddd' lw 1
-set key bottom left box opaque
-colors = '#1f77b4 #d62728 #2ca02c #ff7f0e #9467bd #8c564b'
+set key outside right top box opaque samplen 2 font ',13' noenhanced
 plot for [i=0:nchannels-1] datafile index i using 1:2 with lines lw 2 \
-       lc rgb word(colors, i % 6 + 1) title word(names, i + 1), \
-     for [i=0:(levels eq '' ? -1 : nchannels-1)] real(word(levels, i + 1)) with lines dt 2 lw 2 \
-       lc rgb word(colors, i % 6 + 1) title sprintf('%s noise density', word(names, i + 1))
+       lc rgb word(colors, i + 1) title columnheader(1), \
+     for [i=0:nlines-1] linefile index i using 1:2 with lines dt 2 lw 2 \
+       lc rgb word(linecolors, i + 1) title columnheader(1)

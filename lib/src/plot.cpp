@@ -36,13 +36,6 @@ std::string gnuplot_string(std::string_view text) {
   return s + "'";
 }
 
-/// Channel names go into a space-separated gnuplot word list.
-std::string word_safe(std::string_view name) {
-  std::string s;
-  for (char c : name) s += (c == ' ' || c == '\'' || c == '"') ? '_' : c;
-  return s.empty() ? "?" : s;
-}
-
 std::string terminal_for(PlotFormat format) {
   switch (format) {
     case PlotFormat::svg: return "svg";
@@ -70,11 +63,29 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
+/// The palette for curves without their own colour (colour-blind-safe "tab10" order).
+constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+std::string colors_of(const std::vector<PlotCurve>& curves) {
+  std::string colors;
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    if (!colors.empty()) colors += ' ';
+    colors += curves[i].color.empty() ? kPalette[i % std::size(kPalette)] : curves[i].color;
+  }
+  return colors.empty() ? "#000000" : colors;
+}
+
+/// One block per curve: a quoted title line, then "x y [low high]" rows; points that a log axis
+/// cannot show are left out.
 void write_blocks(const std::filesystem::path& file, const std::vector<PlotCurve>& curves,
                   bool with_band) {
   std::ofstream out(file);
   out.precision(10);
   for (const auto& curve : curves) {
+    std::string title;
+    for (char c : curve.name) title += (c == '"' || c == '\\' || c == '\n') ? ' ' : c;
+    out << '"' << title << "\"" << (with_band ? " 0 0 0" : " 0") << '\n';
     for (std::size_t i = 0; i < curve.x.size(); ++i) {
       const double x = curve.x[i], y = curve.y[i];
       if (!(x > 0 && y > 0 && std::isfinite(x) && std::isfinite(y))) continue;
@@ -129,15 +140,6 @@ void move_into_place(const std::filesystem::path& rendered, const std::filesyste
   write_file_atomically(output, content, overwrite);
 }
 
-std::string names_of(const std::vector<PlotCurve>& curves) {
-  std::string names;
-  for (const auto& c : curves) {
-    if (!names.empty()) names += ' ';
-    names += word_safe(c.name);
-  }
-  return names;
-}
-
 }  // namespace
 
 PlotFormat parse_plot_format(std::string_view text) {
@@ -171,13 +173,22 @@ void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::pat
   if (plot.curves.empty()) throw Error("nothing to plot");
   ScratchDir scratch;
   const auto data = scratch.path() / "adev.dat";
+  const auto lines = scratch.path() / "lines.dat";
+  const auto markers = scratch.path() / "markers.dat";
   const auto rendered = scratch.path() / ("plot" + output.extension().string());
   write_blocks(data, plot.curves, true);
+  write_blocks(lines, plot.lines, false);
+  write_blocks(markers, plot.markers, false);
   const std::string assignments =
-      "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
+      "datafile=" + gnuplot_string(data.string()) + "; linefile=" + gnuplot_string(lines.string()) +
+      "; markerfile=" + gnuplot_string(markers.string()) +
+      "; outfile=" + gnuplot_string(rendered.string()) +
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
-      "; ylabel_text=" + gnuplot_string(plot.y_label) + "; nchannels=" + std::to_string(plot.curves.size()) +
-      "; names=" + gnuplot_string(names_of(plot.curves));
+      "; ylabel_text=" + gnuplot_string(plot.y_label) +
+      "; nchannels=" + std::to_string(plot.curves.size()) + "; colors=" + gnuplot_string(colors_of(plot.curves)) +
+      "; nlines=" + std::to_string(plot.lines.size()) + "; linecolors=" + gnuplot_string(colors_of(plot.lines)) +
+      "; nmarkers=" + std::to_string(plot.markers.size()) +
+      "; markercolors=" + gnuplot_string(colors_of(plot.markers));
   run_gnuplot("adev.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }
@@ -189,21 +200,47 @@ void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path&
   if (plot.curves.empty()) throw Error("nothing to plot");
   ScratchDir scratch;
   const auto data = scratch.path() / "psd.dat";
+  const auto lines = scratch.path() / "lines.dat";
   const auto rendered = scratch.path() / ("plot" + output.extension().string());
   write_blocks(data, plot.curves, false);
-  std::string levels;
-  if (plot.levels.size() == plot.curves.size()) {
-    std::ostringstream s;
-    s.precision(10);
-    for (double level : plot.levels) s << (s.tellp() > 0 ? " " : "") << level;
-    levels = s.str();
+  write_blocks(lines, plot.lines, false);
+  const std::string assignments =
+      "datafile=" + gnuplot_string(data.string()) + "; linefile=" + gnuplot_string(lines.string()) +
+      "; outfile=" + gnuplot_string(rendered.string()) +
+      "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
+      "; ylabel_text=" + gnuplot_string(plot.y_label) +
+      "; nchannels=" + std::to_string(plot.curves.size()) + "; colors=" + gnuplot_string(colors_of(plot.curves)) +
+      "; nlines=" + std::to_string(plot.lines.size()) + "; linecolors=" + gnuplot_string(colors_of(plot.lines));
+  run_gnuplot("psd.gp", assignments, rendered, scratch);
+  move_into_place(rendered, output, overwrite);
+}
+
+void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::path& output,
+                            bool overwrite) {
+  const PlotFormat format = plot_format_for(output);
+  check_can_write(output, overwrite);
+  if (plot.rows.empty()) throw Error("nothing to plot");
+  ScratchDir scratch;
+  const auto data = scratch.path() / "compliance.dat";
+  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  {
+    std::ofstream out(data);
+    out.precision(10);
+    for (std::size_t i = 0; i < plot.rows.size(); ++i) {
+      const auto& r = plot.rows[i];
+      const char* color = r.verdict == "pass" ? "0x2ca02c" : r.verdict == "marginal" ? "0xe6a000" : "0xd62728";
+      std::string label;
+      for (char c : r.label) label += (c == '"') ? ' ' : c;
+      // Reversed rows so the first item is at the top.
+      out << (plot.rows.size() - 1 - i) << ' ' << r.ratio << ' ' << r.ratio_low << ' '
+          << r.ratio_high << ' ' << color << " \"" << label << "\"\n";
+    }
   }
   const std::string assignments =
       "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
-      "; ylabel_text=" + gnuplot_string(plot.y_label) + "; nchannels=" + std::to_string(plot.curves.size()) +
-      "; names=" + gnuplot_string(names_of(plot.curves)) + "; levels=" + gnuplot_string(levels);
-  run_gnuplot("psd.gp", assignments, rendered, scratch);
+      "; nrows=" + std::to_string(plot.rows.size());
+  run_gnuplot("compliance.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }
 

@@ -20,26 +20,44 @@ PlotFormat plot_format_for(const std::filesystem::path& path);
 /// One curve with an optional band (empty low/high: no band).
 struct PlotCurve {
   std::string name;
+  std::string color;  ///< "#rrggbb"; empty: the palette colour of its index
   std::vector<double> x;
   std::vector<double> y;
   std::vector<double> low;
   std::vector<double> high;
 };
 
-/// ADEV-style plot: log-log curves of deviation against tau with confidence bands.
+/// ADEV-style plot: log-log curves of deviation against tau with confidence bands, plus dashed
+/// lines (fitted model, each fitted term's asymptote, data-sheet lines) and marked points
+/// (read-off points).
 struct DeviationPlot {
   std::string title;
   std::string y_label;  ///< with its unit, e.g. "OADEV [deg/h]"
   std::vector<PlotCurve> curves;
+  std::vector<PlotCurve> lines;    ///< drawn dashed, no band; name "" = no key entry
+  std::vector<PlotCurve> markers;  ///< drawn as open points
 };
 
-/// PSD plot: log-log curves against frequency, with optional horizontal levels (one per curve,
-/// e.g. the noise density as a one-sided PSD level; empty: none).
+/// Compliance chart: one row per checked parameter, measured / limit with its interval.
+struct ComplianceRow {
+  std::string label;
+  double ratio = 0;        ///< estimate / limit
+  double ratio_low = 0;    ///< lower bound / limit
+  double ratio_high = 0;   ///< upper bound / limit
+  std::string verdict;     ///< "pass" | "marginal" | "fail"
+};
+struct CompliancePlot {
+  std::string title;
+  std::vector<ComplianceRow> rows;
+};
+
+/// PSD plot: log-log curves against frequency, with dashed lines (e.g. the noise density as a
+/// one-sided PSD level over its band, the data sheet's level).
 struct SpectrumPlot {
   std::string title;
   std::string y_label;
   std::vector<PlotCurve> curves;
-  std::vector<double> levels;
+  std::vector<PlotCurve> lines;
 };
 
 /// True when a `gnuplot` executable is on PATH.
@@ -53,5 +71,7 @@ void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::pat
                            bool overwrite);
 void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path& output,
                           bool overwrite);
+void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::path& output,
+                            bool overwrite);
 
 }  // namespace sigmatau

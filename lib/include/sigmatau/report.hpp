@@ -1,0 +1,37 @@
+#pragma once
+/// \file report.hpp
+/// The last stage: from results.json (everything in SI) to what people read: summary.md, a
+/// self-contained report.html (inline SVG plots, no external requests) and the plots as files.
+/// Nothing here computes a statistic: every number shown is read from results.json.
+
+#include <map>
+#include <string>
+
+#include "sigmatau/plot.hpp"
+
+namespace sigmatau {
+
+struct ReportOptions {
+  PlotFormat plot_format = PlotFormat::svg;  ///< plot files; the HTML always embeds SVG
+  bool plots = true;                          ///< false: no gnuplot at all
+};
+
+/// Files of an output directory, by relative name.
+struct ReportFiles {
+  std::map<std::string, std::string> files;
+  std::vector<std::string> warnings;  ///< e.g. "gnuplot not found: plots left out"
+};
+
+/// Builds summary.md, report.html and the plots (adev_gyro, adev_accel, psd_gyro, psd_accel,
+/// compliance) from the text of results.json. When gnuplot is missing the report is written
+/// without plots and a warning says how to install it. Throws Error on a results.json that is
+/// not sigmatau's.
+ReportFiles build_report(const std::string& results_json, const ReportOptions& options);
+
+/// Writes `files` into directory `dir` atomically as a whole: everything goes into a fresh
+/// sibling directory, which is renamed to `dir` at the end. An existing `dir` is an Error unless
+/// `overwrite` (then it is replaced only after the new one is complete).
+void write_output_directory(const std::filesystem::path& dir, const ReportFiles& files,
+                            bool overwrite);
+
+}  // namespace sigmatau
