@@ -1,0 +1,548 @@
+// results.json -> summary.md, report.html (inline SVG) and plot files. Presentation only: every
+// number comes from results.json; units are converted for display with units.hpp.
+#include "sigmatau/report.hpp"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/units.hpp"
+
+namespace sigmatau {
+namespace {
+
+using nlohmann::json;
+
+/// Display units per sensor, as data sheets print them.
+struct DisplayUnits {
+  std::string deviation;  // ADEV axis
+  std::string white;      // N
+  std::string bias;       // B
+  std::string walk;       // K
+  std::string ramp;       // R
+  std::string quantization;
+  std::string psd;        // PSD axis
+  std::string density;    // noise density
+};
+
+DisplayUnits display_units(const std::string& sensor) {
+  if (sensor == "gyro") {
+    return {"deg/h", "deg/sqrt(h)", "deg/h", "deg/h/sqrt(h)", "deg/h/h", "arcsec",
+            "(deg/s)^2/Hz", "deg/s/sqrt(Hz)"};
+  }
+  if (sensor == "accel") {
+    return {"ug", "ug/sqrt(Hz)", "ug", "m/s^3/sqrt(Hz)", "m/s^3", "m/s", "(m/s^2)^2/Hz",
+            "ug/sqrt(Hz)"};
+  }
+  return {"", "", "", "", "", "", "", ""};
+}
+
+/// SI value -> value in `unit` (empty unit: unchanged).
+double in_unit(double si, const std::string& unit) {
+  if (unit.empty()) return si;
+  return si / parse_unit(unit).factor;
+}
+
+std::string fmt(double v, int digits = 4) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*g", digits, v);
+  return b;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Strips an XML prolog so an SVG can be inlined in HTML.
+std::string inline_svg(std::string svg) {
+  const auto start = svg.find("<svg");
+  return start == std::string::npos ? svg : svg.substr(start);
+}
+
+const json* find_fit(const json& results, const std::string& channel) {
+  if (!results.contains("fit") || !results["fit"].contains("channels")) return nullptr;
+  for (const auto& c : results["fit"]["channels"]) {
+    if (c.value("name", "") == channel) return &c;
+  }
+  return nullptr;
+}
+
+/// "value [low, high] unit" of a fitted parameter, or "< bound unit" for an upper bound.
+std::string parameter_text(const json& p, const std::string& unit) {
+  if (p.contains("value")) {
+    return fmt(in_unit(p["value"].get<double>(), unit)) + " [" +
+           fmt(in_unit(p["ci_low"].get<double>(), unit), 3) + ", " +
+           fmt(in_unit(p["ci_high"].get<double>(), unit), 3) + "] " + unit;
+  }
+  if (p.contains("upper_bound")) return "< " + fmt(in_unit(p["upper_bound"].get<double>(), unit), 3) + " " + unit;
+  return "";
+}
+
+struct PlotSet {
+  std::map<std::string, std::string> files;  // name -> content (in the chosen format)
+  std::map<std::string, std::string> svgs;   // name -> inline SVG
+  std::vector<std::string> warnings;
+};
+
+DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
+  const DisplayUnits u = display_units(sensor);
+  DeviationPlot plot;
+  std::string statistic = "OADEV";
+  std::size_t index = 0;
+  for (const auto& channel : results["channels"]) {
+    if (channel.value("sensor", "") != sensor || channel["allan"].empty()) continue;
+    const json& curve = channel["allan"][0];
+    statistic.clear();
+    for (char c : curve.value("statistic", std::string("oadev"))) statistic += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    PlotCurve pc;
+    pc.name = channel.value("name", "?");
+    static const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c"};
+    pc.color = kColors[index % 3];
+    for (const auto& p : curve["points"]) {
+      if (p["dev"].is_null()) continue;
+      pc.x.push_back(p["tau"].get<double>());
+      pc.y.push_back(in_unit(p["dev"].get<double>(), u.deviation));
+      pc.low.push_back(p["ci_low"].is_null() ? 0.0 : in_unit(p["ci_low"].get<double>(), u.deviation));
+      pc.high.push_back(p["ci_high"].is_null() ? 0.0 : in_unit(p["ci_high"].get<double>(), u.deviation));
+    }
+    plot.curves.push_back(pc);
+    if (const json* fit = find_fit(results, pc.name); fit && fit->contains("model_adev")) {
+      const json& model = (*fit)["model_adev"];
+      PlotCurve line;
+      line.name = pc.name + " fit";
+      line.color = pc.color;
+      line.x = model["tau"].get<std::vector<double>>();
+      for (double v : model["adev"].get<std::vector<double>>()) line.y.push_back(in_unit(v, u.deviation));
+      plot.lines.push_back(line);
+      if (fit->contains("terms_adev")) {
+        for (const auto& [term, values] : (*fit)["terms_adev"].items()) {
+          PlotCurve t;
+          t.name = index == 0 ? term + " term" : "";
+          t.color = "#999999";
+          t.x = model["tau"].get<std::vector<double>>();
+          for (double v : values.get<std::vector<double>>()) t.y.push_back(in_unit(v, u.deviation));
+          plot.lines.push_back(t);
+        }
+      }
+      if (fit->contains("readouts")) {
+        PlotCurve markers;
+        markers.name = index == 0 ? "read-off points" : "";
+        markers.color = pc.color;
+        for (const auto& r : (*fit)["readouts"]) {
+          markers.x.push_back(r["tau"].get<double>());
+          markers.y.push_back(in_unit(r["adev"].get<double>(), u.deviation));
+        }
+        plot.markers.push_back(markers);
+      }
+    }
+    ++index;
+  }
+  if (results.contains("spec_lines") && results["spec_lines"].contains(sensor)) {
+    const json& lines = results["spec_lines"][sensor];
+    std::vector<double> taus;
+    if (!plot.curves.empty()) taus = {plot.curves.front().x.front(), plot.curves.front().x.back()};
+    if (lines.contains("white") && taus.size() == 2) {
+      PlotCurve l;
+      l.name = "data sheet noise density";
+      l.color = "#000000";
+      const double n = lines["white"].get<double>();
+      l.x = taus;
+      for (double t : taus) l.y.push_back(in_unit(n / std::sqrt(t), u.deviation));
+      plot.lines.push_back(l);
+    }
+    if (lines.contains("bias_floor") && taus.size() == 2) {
+      PlotCurve l;
+      l.name = "data sheet bias instability";
+      l.color = "#555555";
+      const double floor = lines["bias_floor"].get<double>();
+      l.x = taus;
+      l.y = {in_unit(floor, u.deviation), in_unit(floor, u.deviation)};
+      plot.lines.push_back(l);
+    }
+  }
+  plot.title = std::string(sensor == "gyro" ? "Gyroscope" : "Accelerometer") + " " + statistic +
+               " (" + fmt(100 * results.value("confidence", 0.683), 3) + " % bands)";
+  plot.y_label = statistic + " [" + u.deviation + "]";
+  return plot;
+}
+
+SpectrumPlot spectrum_plot(const json& results, const std::string& sensor) {
+  const DisplayUnits u = display_units(sensor);
+  SpectrumPlot plot;
+  plot.title = std::string(sensor == "gyro" ? "Gyroscope" : "Accelerometer") +
+               " PSD (one-sided, Welch)";
+  plot.y_label = "PSD [" + u.psd + "]";
+  const double psd_factor = parse_unit(u.psd).factor;
+  const double density_factor = parse_unit(u.density).factor;
+  std::size_t index = 0;
+  for (const auto& channel : results["channels"]) {
+    if (channel.value("sensor", "") != sensor || !channel.contains("psd")) continue;
+    const json& psd = channel["psd"];
+    static const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c"};
+    PlotCurve pc;
+    pc.name = channel.value("name", "?");
+    pc.color = kColors[index % 3];
+    pc.x = psd["frequency"].get<std::vector<double>>();
+    for (double v : psd["psd"].get<std::vector<double>>()) pc.y.push_back(v / psd_factor);
+    plot.curves.push_back(pc);
+    if (psd.contains("noise_density")) {
+      const json& nd = psd["noise_density"];
+      const double level = std::pow(nd["one_sided_asd"].get<double>(), 2) / psd_factor;
+      PlotCurve line;
+      line.name = pc.name + " N = " + fmt(nd["value"].get<double>() / density_factor, 3) + " " + u.density;
+      line.color = pc.color;
+      line.x = nd["band_hz"].get<std::vector<double>>();
+      line.y = {level, level};
+      plot.lines.push_back(line);
+    }
+    ++index;
+  }
+  if (results.contains("spec_lines") && results["spec_lines"].contains(sensor) &&
+      results["spec_lines"][sensor].contains("white") && !plot.curves.empty()) {
+    const double n = results["spec_lines"][sensor]["white"].get<double>();
+    PlotCurve line;
+    line.name = "data sheet (one-sided level 2 N^2)";
+    line.color = "#000000";
+    line.x = {plot.curves.front().x.front(), plot.curves.front().x.back()};
+    line.y = {2 * n * n / psd_factor, 2 * n * n / psd_factor};
+    plot.lines.push_back(line);
+  }
+  return plot;
+}
+
+CompliancePlot compliance_plot(const json& results) {
+  CompliancePlot plot;
+  plot.title = "Compliance with " + results["compliance"]["spec"].value("part", std::string("data sheet"));
+  for (const auto& item : results["compliance"]["items"]) {
+    const std::string verdict = item.value("verdict", "");
+    if (verdict == "not specified") continue;
+    ComplianceRow row;
+    row.label = item.value("sensor", "") + " " + item.value("quantity", "") + " " + item.value("axis", "");
+    row.ratio = item["margin"].get<double>();
+    row.ratio_high = item["margin_upper"].get<double>();
+    const double value = item["value"].get<double>();
+    const double low = item["ci_low"].get<double>();
+    row.ratio_low = value != 0 ? row.ratio * std::abs(low / value) : row.ratio;
+    if (row.ratio_low > row.ratio) row.ratio_low = row.ratio;
+    row.verdict = verdict;
+    plot.rows.push_back(row);
+  }
+  return plot;
+}
+
+/// Renders every plot twice when needed: SVG for the HTML, and the requested file format.
+PlotSet render_plots(const json& results, const ReportOptions& options) {
+  PlotSet set;
+  if (!options.plots) return set;
+  if (!gnuplot_available()) {
+    set.warnings.push_back("gnuplot not found: plots left out (install it with: apt-get install gnuplot-nox)");
+    return set;
+  }
+  char pattern[] = "/tmp/sigmatau-report-XXXXXX";
+  if (!::mkdtemp(pattern)) throw Error("cannot create a temporary directory for plots");
+  const std::filesystem::path scratch = pattern;
+  const std::string ext = options.plot_format == PlotFormat::svg   ? ".svg"
+                          : options.plot_format == PlotFormat::png ? ".png"
+                                                                   : ".pdf";
+  auto render = [&](const std::string& name, auto&& draw) {
+    try {
+      draw(scratch / (name + ".svg"));
+      set.svgs[name] = inline_svg(read_file(scratch / (name + ".svg")));
+      if (options.plot_format == PlotFormat::svg) {
+        set.files[name + ext] = read_file(scratch / (name + ".svg"));
+      } else {
+        draw(scratch / (name + ext));
+        set.files[name + ext] = read_file(scratch / (name + ext));
+      }
+    } catch (const Error& e) {
+      set.warnings.push_back("plot " + name + " failed: " + e.what());
+    }
+  };
+  for (const std::string sensor : {"gyro", "accel"}) {
+    bool present = false;
+    for (const auto& c : results["channels"]) present = present || c.value("sensor", "") == sensor;
+    if (!present) continue;
+    const DeviationPlot adev = deviation_plot(results, sensor);
+    if (!adev.curves.empty()) {
+      render("adev_" + sensor, [&](const std::filesystem::path& p) { render_deviation_plot(adev, p, true); });
+    }
+    const SpectrumPlot psd = spectrum_plot(results, sensor);
+    if (!psd.curves.empty()) {
+      render("psd_" + sensor, [&](const std::filesystem::path& p) { render_spectrum_plot(psd, p, true); });
+    }
+  }
+  if (results.contains("compliance") && !results["compliance"].is_null()) {
+    const CompliancePlot chart = compliance_plot(results);
+    if (!chart.rows.empty()) {
+      render("compliance", [&](const std::filesystem::path& p) { render_compliance_plot(chart, p, true); });
+    }
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(scratch, ec);
+  return set;
+}
+
+std::string verdict_class(const std::string& verdict) {
+  if (verdict == "pass") return "pass";
+  if (verdict == "marginal") return "marginal";
+  if (verdict == "fail") return "fail";
+  return "na";
+}
+
+/// Rows of the per-channel parameter table: N, B, K (Q, R when fitted) in data-sheet units.
+std::vector<std::pair<std::string, std::string>> parameter_cells(const json& results,
+                                                                 const json& channel) {
+  const DisplayUnits u = display_units(channel.value("sensor", ""));
+  std::vector<std::pair<std::string, std::string>> cells;
+  const json* fit = find_fit(results, channel.value("name", ""));
+  const std::pair<const char*, std::string> terms[] = {
+      {"N", u.white}, {"B", u.bias}, {"K", u.walk}, {"Q", u.quantization}, {"R", u.ramp}};
+  for (const auto& [key, unit] : terms) {
+    std::string text;
+    if (fit && (*fit)["parameters"].contains(key)) text = parameter_text((*fit)["parameters"][key], unit);
+    cells.emplace_back(key, text);
+  }
+  return cells;
+}
+
+std::string summary_markdown(const json& results, const std::vector<std::string>& warnings) {
+  std::ostringstream md;
+  const json& input = results["input"];
+  md << "# sigmatau report\n\n";
+  md << "- input: `" << input.value("path", "") << "` (" << input.value("samples", 0) << " samples at "
+     << fmt(input.value("rate_hz", 0.0)) << " Hz, " << fmt(input.value("duration_s", 0.0) / 3600.0, 3)
+     << " h)\n";
+  if (input.contains("trim")) md << "- warm-up: " << input["trim"].value("reason", "") << "\n";
+  if (results.contains("compliance") && !results["compliance"].is_null()) {
+    md << "- data sheet: " << results["compliance"]["spec"].value("manufacturer", "") << " "
+       << results["compliance"]["spec"].value("part", "") << ": **"
+       << results["compliance"].value("verdict", "") << "**\n";
+  }
+  md << "\n| channel | N | B | K | noise density (PSD) |\n|---|---|---|---|---|\n";
+  for (const auto& channel : results["channels"]) {
+    const auto cells = parameter_cells(results, channel);
+    std::string density;
+    if (channel.contains("psd") && channel["psd"].contains("noise_density")) {
+      const DisplayUnits u = display_units(channel.value("sensor", ""));
+      density = parameter_text(channel["psd"]["noise_density"], u.density);
+    }
+    md << "| " << channel.value("name", "") << " | " << cells[0].second << " | " << cells[1].second
+       << " | " << cells[2].second << " | " << density << " |\n";
+  }
+  if (results.contains("compliance") && !results["compliance"].is_null()) {
+    md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
+    for (const auto& item : results["compliance"]["items"]) {
+      md << "| " << item.value("sensor", "") << " " << item.value("quantity", "") << " "
+         << item.value("axis", "") << " | " << item.value("verdict", "") << " | "
+         << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << " | "
+         << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << " | "
+         << item.value("limit_text", "") << " |\n";
+    }
+  }
+  if (!warnings.empty()) {
+    md << "\n## Warnings\n";
+    for (const auto& w : warnings) md << "- " << w << "\n";
+  }
+  md << "\nGenerated by sigmatau " << results.value("version", "") << "; all numbers in results.json (SI).\n";
+  return md.str();
+}
+
+constexpr const char* kStyle = R"css(
+body{font-family:Helvetica,Arial,sans-serif;max-width:1150px;margin:2em auto;padding:0 1em;color:#222}
+h1{font-size:1.8em;margin-bottom:.2em}h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:1.6em}
+table{border-collapse:collapse;margin:.6em 0;font-size:.95em}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:left}
+th{background:#f3f3f3}.pass{background:#dff3df}.marginal{background:#fff1cc}.fail{background:#f8d7d7}.na{color:#888}
+.verdict{font-size:1.3em;font-weight:bold;padding:.3em .8em;display:inline-block;border-radius:4px}
+.plot svg{width:100%;height:auto}pre{background:#f7f7f7;padding:.8em;overflow-x:auto;font-size:.85em}
+.muted{color:#666;font-size:.9em})css";
+
+std::string report_html(const json& results, const PlotSet& plots,
+                        const std::vector<std::string>& warnings) {
+  std::ostringstream h;
+  const json& input = results["input"];
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>sigmatau report: "
+    << html_escape(input.value("path", "")) << "</title><style>" << kStyle << "</style></head><body>\n";
+  h << "<h1>sigmatau report</h1><p class=\"muted\">" << html_escape(input.value("path", ""))
+    << " &middot; sigmatau " << html_escape(results.value("version", "")) << " &middot; "
+    << html_escape(results.value("created_utc", "")) << "</p>\n";
+
+  // Summary and verdict.
+  h << "<h2 id=\"summary\">Summary</h2>\n";
+  if (results.contains("compliance") && !results["compliance"].is_null()) {
+    const std::string verdict = results["compliance"].value("verdict", "");
+    h << "<p>Data sheet " << html_escape(results["compliance"]["spec"].value("manufacturer", "")) << " "
+      << html_escape(results["compliance"]["spec"].value("part", "")) << ": <span class=\"verdict "
+      << verdict_class(verdict == "all pass" ? "pass" : verdict == "fail" ? "fail" : "marginal")
+      << "\">" << html_escape(verdict) << "</span></p>\n";
+  }
+  h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th><th>noise density (PSD)</th></tr>\n";
+  for (const auto& channel : results["channels"]) {
+    const auto cells = parameter_cells(results, channel);
+    std::string density;
+    if (channel.contains("psd") && channel["psd"].contains("noise_density")) {
+      const DisplayUnits u = display_units(channel.value("sensor", ""));
+      density = parameter_text(channel["psd"]["noise_density"], u.density);
+    }
+    h << "<tr><td>" << html_escape(channel.value("name", "")) << "</td><td>" << html_escape(cells[0].second)
+      << "</td><td>" << html_escape(cells[1].second) << "</td><td>" << html_escape(cells[2].second)
+      << "</td><td>" << html_escape(density) << "</td></tr>\n";
+  }
+  h << "</table><p class=\"muted\">Intervals at " << fmt(100 * results.value("confidence", 0.683), 3)
+    << " % confidence. N: angle/velocity random walk (white noise density, AVAR = N&sup2;/&tau;); "
+       "B: bias instability (ADEV floor 0.664 B); K: rate random walk. Terms the data does not "
+       "support are given as upper bounds (&lt;).</p>\n";
+
+  // Compliance.
+  if (results.contains("compliance") && !results["compliance"].is_null()) {
+    h << "<h2 id=\"compliance\">Data-sheet compliance</h2>\n<table><tr><th>parameter</th><th>verdict</th>"
+         "<th>measured / limit</th><th>upper bound / limit</th><th>limit as printed</th><th>rule</th></tr>\n";
+    for (const auto& item : results["compliance"]["items"]) {
+      const std::string verdict = item.value("verdict", "");
+      h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
+        << html_escape(item.value("sensor", "") + " " + item.value("quantity", "") + " " + item.value("axis", ""))
+        << "</td><td>" << html_escape(verdict) << "</td><td>"
+        << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << "</td><td>"
+        << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << "</td><td>"
+        << html_escape(item.value("limit_text", "")) << (item.value("limit_is_typical", false) ? " (typ)" : "")
+        << "</td><td>" << html_escape(item.value("rule", "")) << "</td></tr>\n";
+    }
+    h << "</table>\n";
+    if (plots.svgs.count("compliance")) h << "<div class=\"plot\">" << plots.svgs.at("compliance") << "</div>\n";
+  }
+
+  // Plots.
+  h << "<h2 id=\"plots\">Allan deviation and PSD</h2>\n";
+  for (const std::string name : {"adev_gyro", "psd_gyro", "adev_accel", "psd_accel"}) {
+    if (plots.svgs.count(name)) h << "<div class=\"plot\" id=\"plot-" << name << "\">" << plots.svgs.at(name) << "</div>\n";
+  }
+  if (plots.svgs.empty()) h << "<p class=\"muted\">No plots (see warnings).</p>\n";
+
+  // Filter tuning.
+  if (results.contains("filter") && !results["filter"].empty()) {
+    h << "<h2 id=\"filter\">Filter tuning</h2>\n";
+    for (const auto& f : results["filter"]) {
+      h << "<h3>at " << fmt(f.value("rate_hz", 0.0)) << " Hz</h3><pre>"
+        << html_escape(f.value("explain", "")) << "</pre>\n";
+    }
+  }
+
+  // Provenance.
+  h << "<h2 id=\"provenance\">Input and provenance</h2><table>\n";
+  h << "<tr><th>file</th><td>" << html_escape(input.value("path", "")) << "</td></tr>\n";
+  if (input.contains("bytes")) h << "<tr><th>size</th><td>" << input["bytes"].get<std::int64_t>() << " bytes</td></tr>\n";
+  if (input.contains("crc32")) h << "<tr><th>CRC-32</th><td>" << html_escape(input["crc32"].get<std::string>()) << "</td></tr>\n";
+  h << "<tr><th>samples</th><td>" << input.value("samples", 0) << "</td></tr>\n";
+  h << "<tr><th>rate</th><td>" << fmt(input.value("rate_hz", 0.0), 8) << " Hz</td></tr>\n";
+  h << "<tr><th>duration</th><td>" << fmt(input.value("duration_s", 0.0), 6) << " s</td></tr>\n";
+  if (input.contains("timing") && !input["timing"].is_null()) {
+    const json& t = input["timing"];
+    h << "<tr><th>time stamps</th><td>jitter " << fmt(t.value("jitter_s", 0.0), 3) << " s, "
+      << t["gaps"].size() << " gaps, " << t.value("non_increasing", 0) << " non-increasing</td></tr>\n";
+  }
+  if (input.contains("trim")) h << "<tr><th>warm-up</th><td>" << html_escape(input["trim"].value("reason", "")) << "</td></tr>\n";
+  h << "<tr><th>tool</th><td>sigmatau " << html_escape(results.value("version", "")) << "</td></tr>\n</table>\n";
+
+  if (!warnings.empty()) {
+    h << "<h2 id=\"warnings\">Warnings</h2><ul>\n";
+    for (const auto& w : warnings) h << "<li>" << html_escape(w) << "</li>\n";
+    h << "</ul>\n";
+  }
+  h << "</body></html>\n";
+  return h.str();
+}
+
+}  // namespace
+
+ReportFiles build_report(const std::string& results_json, const ReportOptions& options) {
+  json results;
+  try {
+    results = json::parse(results_json);
+  } catch (const json::parse_error& e) {
+    throw Error(std::string("results.json is not valid JSON: ") + e.what());
+  }
+  if (results.value("tool", "") != "sigmatau" || !results.contains("channels") || !results.contains("input")) {
+    throw Error("not a sigmatau analyze result (expected \"tool\": \"sigmatau\", \"input\" and \"channels\")");
+  }
+  ReportFiles out;
+  PlotSet plots;
+  try {
+    plots = render_plots(results, options);
+  } catch (const json::exception& e) {
+    throw Error(std::string("results.json has an unexpected layout: ") + e.what());
+  }
+  std::vector<std::string> warnings;
+  if (results.contains("warnings")) {
+    for (const auto& w : results["warnings"]) warnings.push_back(w.get<std::string>());
+  }
+  warnings.insert(warnings.end(), plots.warnings.begin(), plots.warnings.end());
+  out.warnings = plots.warnings;
+  out.files = plots.files;
+  out.files["summary.md"] = summary_markdown(results, warnings);
+  out.files["report.html"] = report_html(results, plots, warnings);
+  return out;
+}
+
+void write_output_directory(const std::filesystem::path& dir, const ReportFiles& files,
+                            bool overwrite) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !overwrite) {
+    throw Error(dir.string() + " exists; use --force to replace it");
+  }
+  const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
+  std::filesystem::create_directories(parent, ec);
+  if (ec) throw Error("cannot create directory " + parent.string() + ": " + ec.message());
+  std::string name = (parent / (dir.filename().string() + ".partial-XXXXXX")).string();
+  if (!::mkdtemp(name.data())) throw Error("cannot create a directory next to " + dir.string());
+  const std::filesystem::path staging = name;
+  try {
+    for (const auto& [file, content] : files.files) {
+      write_file_atomically(staging / file, content, false);
+    }
+    std::filesystem::permissions(staging, std::filesystem::perms::owner_all |
+                                              std::filesystem::perms::group_read |
+                                              std::filesystem::perms::group_exec |
+                                              std::filesystem::perms::others_read |
+                                              std::filesystem::perms::others_exec);
+    if (std::filesystem::exists(dir, ec)) {
+      // Replace: move the old one aside first, so a failure leaves either the old or the new.
+      const std::filesystem::path old = std::filesystem::path(name + ".old");
+      std::filesystem::rename(dir, old);
+      std::filesystem::rename(staging, dir);
+      std::filesystem::remove_all(old, ec);
+    } else {
+      std::filesystem::rename(staging, dir);
+    }
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::filesystem::remove_all(staging, ec);
+    throw Error("cannot write " + dir.string() + ": " + e.what());
+  } catch (...) {
+    std::filesystem::remove_all(staging, ec);
+    throw;
+  }
+}
+
+}  // namespace sigmatau
