@@ -4,11 +4,23 @@
 /// # or % comments, gzip transparently, "-" for stdin) and raw interleaved binary. Values are
 /// returned as they are in the file (no unit conversion here); the time column, when given, is
 /// converted to seconds.
+///
+/// Text format rules (one place; lib/src/text_log.cpp implements them):
+/// - Lines end in LF or CRLF. Blank lines and lines whose first non-blank character is '#' or '%'
+///   are skipped anywhere in the file. A UTF-8 byte-order mark at the start is ignored.
+/// - The delimiter is chosen from the first data line: a tab if it holds one, else a comma if it
+///   holds one, else runs of spaces/tabs. Spaces around a field, a leading '+' and one pair of
+///   surrounding double quotes are tolerated; quoted fields may not contain the delimiter.
+/// - The first non-comment row is a header when any of its fields is not a number.
+/// - Limits (for bounded memory on hostile input): a line holds at most 1 MiB and at most 100000
+///   fields; longer lines or wider rows are a ParseError.
+/// Memory stays bounded: the reader holds one read buffer (default 4 MiB) plus one line.
 
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sigmatau {
@@ -16,52 +28,77 @@ namespace sigmatau {
 enum class TimeUnit { s, ms, us, ns };
 enum class BinaryFormat { none, i16, i32, f32, f64 };
 
+/// What to do with NaN or Inf in a selected column (or the time column).
+enum class NonFinitePolicy {
+  error,     ///< throw ParseError "non-finite value" (default)
+  skip_row,  ///< drop the whole row and count it in TimingReport::rows_skipped_nonfinite
+};
+
 /// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
 BinaryFormat parse_binary_format(std::string_view text);
 
 struct LogOptions {
-  std::string path;                   ///< file, or "-" for stdin; gzip detected by magic bytes
-  std::vector<std::string> columns;   ///< header names or 0-based indices; empty: every numeric
-                                      ///< column except the time column
-  std::string time_column;            ///< header name or 0-based index; empty: no time column
+  std::string path;                  ///< file, or "-" for stdin; gzip detected by magic bytes
+  std::vector<std::string> columns;  ///< header names or 0-based indices (an all-digit entry is
+                                     ///< an index; without a header "c<index>" names work too);
+                                     ///< empty: every column whose first data field is a number,
+                                     ///< except the time column, in file order
+  std::string time_column;           ///< header name or 0-based index; empty: no time column
   TimeUnit time_unit = TimeUnit::s;
+  NonFinitePolicy nonfinite = NonFinitePolicy::error;
   // Raw binary input (interleaved samples, channel-major per row):
   BinaryFormat binary = BinaryFormat::none;
   int binary_channels = 0;
   bool big_endian = false;
-  std::int64_t skip_bytes = 0;
+  std::int64_t skip_bytes = 0;  ///< header bytes to skip (of the decompressed stream)
+  /// Size of each read [bytes]; 0 means the default (4 MiB). Small values exist for tests of rows
+  /// split across buffer boundaries; memory use is about this plus the 1 MiB line limit.
+  std::int64_t read_buffer_bytes = 0;
 };
 
 /// A block of rows, stored per channel: values[c][r].
 struct SampleBlock {
   std::vector<std::vector<double>> values;
   std::vector<double> t_s;  ///< time of each row [s] when a time column is read, else empty
-  std::int64_t rows() const { return values.empty() ? 0 : static_cast<std::int64_t>(values[0].size()); }
+  std::int64_t rows() const {
+    return values.empty() ? 0 : static_cast<std::int64_t>(values[0].size());
+  }
 };
 
 /// An interval between consecutive time stamps larger than 1.5 nominal intervals.
 struct Gap {
-  std::int64_t row = 0;     ///< 0-based index of the sample after the gap
-  std::int64_t line = 0;    ///< 1-based line in the file (text input), 0 for binary
-  double start_s = 0;       ///< time stamp before the gap [s]
-  double length_s = 0;      ///< interval [s]
+  std::int64_t row = 0;   ///< 0-based index of the sample after the gap
+  std::int64_t line = 0;  ///< 1-based line in the file (text input), 0 for binary
+  double start_s = 0;     ///< time stamp before the gap [s]
+  double length_s = 0;    ///< interval [s]
 };
 
-/// Statistics of the time column, accumulated while reading.
+/// Statistics of the time column, accumulated while reading. The nominal interval is the exact
+/// median of the first 100000 intervals (bounded memory; the whole log when it is shorter).
+/// Intervals are differences of the stamps as written (integer parts subtracted exactly), so
+/// nanosecond epoch stamps keep their resolution even though t_s itself is a double.
 struct TimingReport {
-  std::int64_t samples = 0;
+  std::int64_t samples = 0;  ///< rows delivered (after skipped rows)
   bool has_time = false;
-  double rate_hz = 0;         ///< 1 / median interval (0 without a time column)
-  double mean_interval_s = 0;
-  double jitter_s = 0;        ///< standard deviation of the intervals [s]
+  double rate_hz = 0;          ///< 1 / nominal (median) interval; 0 without a time column or
+                               ///< when fewer than 2 stamps or the median interval is <= 0
+  double mean_interval_s = 0;  ///< mean of all intervals [s] = (t_last - t_first) / (samples - 1)
+  double jitter_s = 0;         ///< standard deviation of the regular intervals [s]: gaps and
+                               ///< non-increasing steps are excluded (they are reported apart)
   std::int64_t non_increasing = 0;  ///< intervals <= 0 (duplicated or backwards stamps)
-  std::vector<Gap> gaps;      ///< intervals > 1.5 x the nominal one
+  std::int64_t gap_count = 0;       ///< all intervals > 1.5 x nominal (the list below is capped)
+  std::vector<Gap> gaps;            ///< the first 1000 gaps, in file order
+  std::int64_t rows_skipped_nonfinite = 0;  ///< rows dropped by NonFinitePolicy::skip_row
 };
 
-/// Streaming reader. Throws ParseError (file, line, column, what was expected) on bad input:
-/// empty file, no numeric column, ragged row, non-numeric field, NaN/Inf, unknown column,
-/// truncated binary record.
+/// Streaming reader. The constructor opens the input and reads up to the first data row (so the
+/// channel names are known); read_block() then parses one buffer-sized piece at a time.
+/// Throws Error when the file cannot be opened (with strerror), and ParseError (file, 1-based
+/// line, 1-based column = field number, what was expected) on bad input: no data rows, no numeric
+/// column, ragged row, non-numeric field, NaN/Inf, unknown column name, column index out of range,
+/// line or row over the limits, corrupt gzip, truncated binary record (byte offset in the message).
+/// For stdin the file name in messages is "<stdin>".
 class LogReader {
  public:
   explicit LogReader(const LogOptions& options);
@@ -75,9 +112,10 @@ class LogReader {
   /// Reads up to max_rows rows into `block` (replacing its contents). Returns false, with an
   /// empty block, at the end of the input.
   bool read_block(SampleBlock& block, std::int64_t max_rows = 65536);
-  /// Timing statistics of what has been read so far.
+  /// Timing statistics of what has been read so far (final once read_block returned false).
   const TimingReport& timing() const;
   /// Bytes consumed so far and the total size when known (for progress display), else -1.
+  /// Both count the file as stored (compressed bytes for gzip).
   std::int64_t bytes_read() const;
   std::int64_t total_bytes() const;
 
@@ -91,16 +129,18 @@ struct Log {
   std::string path;
   std::vector<std::string> channel_names;
   std::vector<std::vector<double>> channels;
-  std::vector<double> t_s;       ///< empty without a time column
+  std::vector<double> t_s;  ///< empty without a time column
   TimingReport timing;
 };
 
-/// Reads everything through LogReader. Throws like LogReader, and Error "no samples" when the
-/// input holds no data rows.
+/// Reads everything through LogReader. Throws like LogReader (an input without data rows is
+/// ParseError "no data rows"), and Error "no samples" when no row is left after skipping rows
+/// under NonFinitePolicy::skip_row.
 Log read_log(const LogOptions& options);
 
-/// The sample rate to use: `rate_hz` when given (must be > 0), else the rate measured from the
-/// time column; throws Error "no --rate and no time column" otherwise.
+/// The sample rate to use [Hz]: `rate_hz` when given (must be > 0 and finite), else the rate
+/// measured from the time column; throws Error "no --rate and no time column" otherwise, and
+/// Error when the time column gives no usable rate.
 double resolve_rate_hz(std::optional<double> rate_hz, const TimingReport& timing,
                        const std::string& path);
 

@@ -1,0 +1,117 @@
+#pragma once
+// Internal pieces shared by the text and binary log readers: limits, number parsing, column
+// selection, and the timing accumulator.
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sigmatau/log_reader.hpp"
+
+namespace sigmatau::detail {
+
+/// Default read size: large enough that syscall and refill overhead vanish next to parsing,
+/// small enough to stay in L2/L3-friendly territory and cheap on small machines.
+constexpr std::size_t kDefaultBufferBytes = std::size_t{4} << 20;
+/// Longest accepted text line [bytes]. A real log row is < 10 kB; a longer "line" is almost
+/// always a binary file read as text, and the limit keeps memory bounded.
+constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+/// Most fields accepted in one row (bounded memory for the per-column tables).
+constexpr std::size_t kMaxColumns = 100000;
+/// Longest field text quoted in an error message [characters].
+constexpr std::size_t kMaxQuotedField = 40;
+
+/// Field slots: what to do with each column of the file.
+constexpr int kSkipColumn = -1;
+constexpr int kTimeColumn = -2;
+
+/// Strips surrounding spaces/tabs, one pair of double quotes, and a leading '+' before a digit
+/// or '.'.
+std::string_view trim_field(std::string_view field);
+
+/// Parses a whole (trimmed) field as a double. nullopt when it is not a number. Values beyond
+/// the double range come back as +-inf (and are caught as non-finite), tiny ones as 0 or
+/// subnormal.
+std::optional<double> to_number(std::string_view field);
+
+/// `field` in double quotes for a message, cut to kMaxQuotedField characters ("..." appended).
+std::string quote_field(std::string_view field);
+
+/// The outcome of matching LogOptions::columns / time_column against a file's columns.
+struct ColumnSelection {
+  std::vector<int> slots;            ///< per file column: channel index, kSkipColumn, kTimeColumn
+  std::vector<int> channel_columns;  ///< per channel: its file column
+  std::vector<std::string> channel_names;
+  bool has_time = false;
+};
+
+/// Resolves the selection. `names` holds one entry per file column (header names, or empty
+/// strings without a header); `numeric[c]` says whether the first data row holds a number there.
+/// `what` is "column" (text) or "channel" (binary). Errors are ParseError at (file, names_line, 0)
+/// for names and indices, at (file, data_line, 0) for "no numeric columns".
+ColumnSelection select_columns(const std::vector<std::string>& names, bool has_header,
+                               const std::vector<bool>& numeric, const LogOptions& options,
+                               const std::string& file, std::int64_t names_line,
+                               std::int64_t data_line, const std::string& what);
+
+/// A time stamp as written: integer part exact, fraction separately, in the file's unit.
+struct TimeStamp {
+  std::int64_t whole = 0;
+  double frac = 0;
+};
+
+/// Parses a time field ("1700000000123456789", "1700000000.123456", "1.5e3"). false when it is
+/// not a number; a non-finite value gives true with a non-finite frac.
+bool parse_time_stamp(std::string_view field, TimeStamp& stamp);
+
+/// Accumulates TimingReport with bounded memory (see TimingReport).
+class TimingAccumulator {
+ public:
+  void start(bool has_time, TimeUnit unit);
+  /// Adds one time-stamped sample found on `line` (0 for none).
+  void add(const TimeStamp& stamp, std::int64_t line);
+  /// Adds `n` samples without time stamps.
+  void add_untimed(std::int64_t n) { samples_ += n; }
+  void add_skipped() { ++skipped_; }
+  double seconds(const TimeStamp& stamp) const;
+  /// Call once at the end of the input: freezes the nominal interval.
+  void finish();
+  /// The report of everything added so far.
+  TimingReport report() const;
+
+ private:
+  struct Interval {
+    double dt_s;
+    double start_s;
+    std::int64_t line;
+  };
+  struct Classified {
+    std::int64_t gap_count = 0;
+    std::vector<Gap> gaps;
+    std::int64_t regular = 0;  // Welford over regular intervals
+    double mean = 0;
+    double m2 = 0;
+  };
+  static double median(std::vector<double> values);
+  static void classify(Classified& c, double nominal_s, std::int64_t row, std::int64_t line,
+                       double start_s, double dt_s);
+  void freeze();
+
+  bool has_time_ = false;
+  double divisor_ = 1;  // file unit -> s (divided by, so ms -> s is exactly rounded)
+  std::int64_t samples_ = 0;
+  std::int64_t skipped_ = 0;
+  TimeStamp prev_;
+  double prev_s_ = 0;
+  std::int64_t intervals_ = 0;
+  double mean_all_ = 0;
+  std::int64_t non_increasing_ = 0;
+  bool frozen_ = false;
+  double nominal_s_ = 0;
+  std::vector<Interval> window_;
+  Classified classified_;
+};
+
+}  // namespace sigmatau::detail

@@ -1,0 +1,157 @@
+// LogReader: opens the input (file, stdin, gzip), hands it to the text or binary parser and
+// accumulates the timing report. The parsers live in text_log.cpp and binary_log.cpp.
+#include "sigmatau/log_reader.hpp"
+
+#include <cmath>
+
+#include "binary_log.hpp"
+#include "byte_source.hpp"
+#include "log_internal.hpp"
+#include "sigmatau/error.hpp"
+#include "text_log.hpp"
+
+namespace sigmatau {
+namespace {
+
+/// Largest read buffer accepted [bytes]: beyond 1 GiB a bigger buffer buys nothing and a typo
+/// would ask for absurd memory.
+constexpr std::int64_t kMaxBufferBytes = std::int64_t{1} << 30;
+
+}  // namespace
+
+TimeUnit parse_time_unit(std::string_view text) {
+  if (text == "s") return TimeUnit::s;
+  if (text == "ms") return TimeUnit::ms;
+  if (text == "us") return TimeUnit::us;
+  if (text == "ns") return TimeUnit::ns;
+  throw Error("unknown time unit \"" + std::string(text) + "\" (expected s, ms, us or ns)");
+}
+
+BinaryFormat parse_binary_format(std::string_view text) {
+  if (text == "i16") return BinaryFormat::i16;
+  if (text == "i32") return BinaryFormat::i32;
+  if (text == "f32") return BinaryFormat::f32;
+  if (text == "f64") return BinaryFormat::f64;
+  throw Error("unknown binary format \"" + std::string(text) +
+              "\" (expected i16, i32, f32 or f64)");
+}
+
+struct LogReader::Impl {
+  detail::ByteSource source;
+  detail::TimingAccumulator timing;
+  std::unique_ptr<detail::TextLog> text;
+  std::unique_ptr<detail::BinaryLog> binary;
+  const detail::ColumnSelection* selection = nullptr;
+  bool finished = false;
+  mutable bool report_stale = true;
+  mutable TimingReport report;
+
+  explicit Impl(const LogOptions& options) : source(options.path) {
+    if (!(options.read_buffer_bytes >= 0 && options.read_buffer_bytes <= kMaxBufferBytes)) {
+      throw Error("read_buffer_bytes must be in 0.." + std::to_string(kMaxBufferBytes) + ", got " +
+                  std::to_string(options.read_buffer_bytes));
+    }
+    const std::size_t buffer_bytes = options.read_buffer_bytes > 0
+                                         ? static_cast<std::size_t>(options.read_buffer_bytes)
+                                         : detail::kDefaultBufferBytes;
+    if (options.binary != BinaryFormat::none) {
+      binary = std::make_unique<detail::BinaryLog>(source, options, buffer_bytes, timing);
+      selection = &binary->selection();
+    } else {
+      text = std::make_unique<detail::TextLog>(source, options, buffer_bytes, timing);
+      selection = &text->selection();
+    }
+    timing.start(selection->has_time, options.time_unit);
+  }
+};
+
+LogReader::LogReader(const LogOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+LogReader::~LogReader() = default;
+
+const std::vector<std::string>& LogReader::channel_names() const {
+  return impl_->selection->channel_names;
+}
+
+bool LogReader::has_time() const { return impl_->selection->has_time; }
+
+bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
+  Impl& m = *impl_;
+  if (!(max_rows >= 1)) throw Error("read_block: max_rows must be >= 1");
+  const std::size_t channels = m.selection->channel_columns.size();
+  block.values.resize(channels);
+  const auto reserve = static_cast<std::size_t>(std::min<std::int64_t>(max_rows, 65536));
+  for (auto& v : block.values) {
+    v.clear();
+    v.reserve(reserve);
+  }
+  block.t_s.clear();
+  if (m.selection->has_time) block.t_s.reserve(reserve);
+  if (m.finished) return false;
+  const std::int64_t rows =
+      m.text ? m.text->read_rows(block, max_rows) : m.binary->read_rows(block, max_rows);
+  m.report_stale = true;
+  if (rows == 0) {
+    m.finished = true;
+    m.timing.finish();
+    return false;
+  }
+  return true;
+}
+
+const TimingReport& LogReader::timing() const {
+  if (impl_->report_stale) {
+    impl_->report = impl_->timing.report();
+    impl_->report_stale = false;
+  }
+  return impl_->report;
+}
+
+std::int64_t LogReader::bytes_read() const { return impl_->source.bytes_consumed(); }
+std::int64_t LogReader::total_bytes() const { return impl_->source.total_bytes(); }
+
+Log read_log(const LogOptions& options) {
+  LogReader reader(options);
+  Log log;
+  log.path = options.path;
+  log.channel_names = reader.channel_names();
+  log.channels.resize(log.channel_names.size());
+  SampleBlock block;
+  while (reader.read_block(block)) {
+    for (std::size_t c = 0; c < block.values.size(); ++c) {
+      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
+    }
+    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+  }
+  log.timing = reader.timing();
+  if (log.channels.empty() || log.channels[0].empty()) {
+    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                     "no samples: the input holds no data rows" +
+                         std::string(log.timing.rows_skipped_nonfinite > 0
+                                         ? " (every row held a non-finite value and was skipped)"
+                                         : ""));
+  }
+  return log;
+}
+
+double resolve_rate_hz(std::optional<double> rate_hz, const TimingReport& timing,
+                       const std::string& path) {
+  if (rate_hz) {
+    if (!(*rate_hz > 0 && std::isfinite(*rate_hz))) {
+      throw Error("--rate must be a positive number of Hz, got " + std::to_string(*rate_hz));
+    }
+    return *rate_hz;
+  }
+  if (!timing.has_time) {
+    throw Error(path +
+                ": no --rate and no time column: give the sample rate (--rate HZ) or the "
+                "time stamp column (--time-column NAME)");
+  }
+  if (!(timing.rate_hz > 0)) {
+    throw Error(path +
+                ": cannot measure the sample rate from the time column (fewer than 2 "
+                "stamps, or the median interval is not > 0); give --rate HZ");
+  }
+  return timing.rate_hz;
+}
+
+}  // namespace sigmatau

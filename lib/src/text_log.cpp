@@ -1,0 +1,317 @@
+// Internal: text log parser. One buffer of `block_bytes_` is read at a time; a line cut by the
+// end of the buffer is moved to the front before the next read, so memory stays at one buffer
+// plus one line (kMaxLineBytes). Numbers are parsed in place with std::from_chars; the slow path
+// (spaces, quotes, '+', errors) runs only for fields the fast path rejects.
+#include "text_log.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau::detail {
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+const char* find_char(const char* b, const char* e, char c) {
+  const void* hit = std::memchr(b, c, static_cast<std::size_t>(e - b));
+  return hit ? static_cast<const char*>(hit) : e;
+}
+const char* skip_blanks(const char* b, const char* e) {
+  while (b != e && is_blank(*b)) ++b;
+  return b;
+}
+const char* find_blank(const char* b, const char* e) {
+  while (b != e && !is_blank(*b)) ++b;
+  return b;
+}
+
+/// The delimiter rule (see log_reader.hpp): tab, else comma, else runs of blanks (0).
+char detect_delimiter(const char* b, const char* e) {
+  if (find_char(b, e, '\t') != e) return '\t';
+  if (find_char(b, e, ',') != e) return ',';
+  return 0;
+}
+
+/// Splits a line by `delimiter` (0: runs of blanks). Throws via `too_many` past kMaxColumns.
+template <class TooMany>
+std::vector<std::string_view> split_line(const char* b, const char* e, char delimiter,
+                                         TooMany too_many) {
+  std::vector<std::string_view> fields;
+  if (delimiter == 0) {
+    for (const char* p = skip_blanks(b, e); p != e; p = skip_blanks(p, e)) {
+      const char* q = find_blank(p, e);
+      fields.emplace_back(p, static_cast<std::size_t>(q - p));
+      if (fields.size() > kMaxColumns) too_many();
+      p = q;
+    }
+    return fields;
+  }
+  for (const char* p = b;;) {
+    const char* q = find_char(p, e, delimiter);
+    fields.emplace_back(p, static_cast<std::size_t>(q - p));
+    if (fields.size() > kMaxColumns) too_many();
+    if (q == e) break;
+    p = q + 1;
+  }
+  return fields;
+}
+
+std::size_t count_fields(const char* b, const char* e, char delimiter) {
+  if (delimiter != 0) return 1 + static_cast<std::size_t>(std::count(b, e, delimiter));
+  std::size_t n = 0;
+  for (const char* p = skip_blanks(b, e); p != e; p = skip_blanks(p, e)) {
+    p = find_blank(p, e);
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+TextLog::TextLog(ByteSource& source, const LogOptions& options, std::size_t block_bytes,
+                 TimingAccumulator& timing)
+    : source_(source),
+      timing_(timing),
+      nonfinite_(options.nonfinite),
+      block_bytes_(block_bytes),
+      buffer_(block_bytes + kMaxLineBytes + 1) {
+  begin_ = end_ = buffer_.data();
+  while (!eof_ && end_ - begin_ < 3) refill();
+  // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first field.
+  if (end_ - begin_ >= 3 && std::memcmp(begin_, "\xEF\xBB\xBF", 3) == 0) begin_ += 3;
+
+  const auto too_many = [&] {
+    fail(line_, 0,
+         "more than " + std::to_string(kMaxColumns) + " columns (the limit; is this a text log?)");
+  };
+  const auto no_rows = [&](const std::string& why) { fail(0, 0, "no data rows: " + why); };
+  const auto check_text = [&](const char* b, const char* e) {
+    if (std::memchr(b, '\0', static_cast<std::size_t>(e - b))) {
+      fail(line_, 0,
+           "binary data (a NUL byte) in a text log; raw binary samples need a binary format "
+           "(--binary) and a channel count");
+    }
+  };
+
+  const char* b = nullptr;
+  const char* e = nullptr;
+  if (!next_content_line(b, e)) no_rows("the input is empty or holds only comments");
+  check_text(b, e);
+  // Header rule: a first row with any field that is not a number, split by its own delimiter.
+  bool header = false;
+  for (const auto f : split_line(b, e, detect_delimiter(b, e), too_many)) {
+    if (!to_number(f)) header = true;
+  }
+  std::string header_text;
+  std::int64_t header_line = 0;
+  if (header) {
+    header_text.assign(b, e);
+    header_line = line_;
+    if (!next_content_line(b, e)) {
+      no_rows("only a header (line " + std::to_string(header_line) + ")");
+    }
+    check_text(b, e);
+  }
+  const char* const first_row = b;
+  const char* const first_row_end = e;
+  // The delimiter comes from the first data line.
+  delimiter_ = detect_delimiter(b, e);
+  mode_ = delimiter_ == 0 ? Mode::whitespace : Mode::delimited;
+  const auto data = split_line(b, e, delimiter_, too_many);
+  std::vector<std::string> names;
+  if (header) {
+    if (data.size() == 1) {
+      names.emplace_back(trim_field(header_text));  // one column: the whole line is its name
+    } else {
+      const char* hb = header_text.data();
+      for (const auto f : split_line(hb, hb + header_text.size(), delimiter_, too_many)) {
+        names.emplace_back(trim_field(f));
+      }
+    }
+    fields_ = names.size();
+    if (data.size() != fields_) fail_ragged(first_row, first_row_end);
+  } else {
+    fields_ = data.size();
+    names.assign(fields_, std::string());
+  }
+  std::vector<bool> numeric(fields_);
+  for (std::size_t c = 0; c < fields_; ++c) numeric[c] = to_number(data[c]).has_value();
+  selection_ = select_columns(names, header, numeric, options, source_.name(),
+                              header ? header_line : line_, line_, "column");
+  row_.assign(selection_.channel_columns.size(), 0.0);
+  // Parse the first data row again with the others: nothing was read since it was returned.
+  begin_ = first_row;
+  --line_;
+}
+
+void TextLog::fail(std::int64_t line, std::int64_t column, const std::string& message) const {
+  throw ParseError(source_.name(), line, column, message);
+}
+
+void TextLog::refill() {
+  const std::size_t keep = static_cast<std::size_t>(end_ - begin_);
+  char* const base = buffer_.data();
+  if (keep > 0 && begin_ != base) std::memmove(base, begin_, keep);
+  begin_ = base;
+  end_ = base + keep;
+  const std::size_t got = source_.read(base + keep, block_bytes_);
+  if (got == 0) eof_ = true;
+  end_ += got;
+}
+
+bool TextLog::next_line(const char*& b, const char*& e) {
+  for (;;) {
+    const char* nl = static_cast<const char*>(
+        std::memchr(begin_, '\n', static_cast<std::size_t>(end_ - begin_)));
+    const char* stop = nl ? nl : end_;
+    if (static_cast<std::size_t>(stop - begin_) > kMaxLineBytes) {
+      fail(line_ + 1, 0,
+           "line longer than " + std::to_string(kMaxLineBytes) +
+               " bytes (the limit; is this a text log?)");
+    }
+    if (nl || (eof_ && begin_ != end_)) {
+      b = begin_;
+      e = stop;
+      begin_ = nl ? nl + 1 : end_;
+      ++line_;
+      return true;
+    }
+    if (eof_) return false;
+    refill();
+  }
+}
+
+bool TextLog::next_content_line(const char*& b, const char*& e) {
+  while (next_line(b, e)) {
+    if (e != b && e[-1] == '\r') --e;
+    const char* p = skip_blanks(b, e);
+    if (p != e && *p != '#' && *p != '%') return true;
+  }
+  return false;
+}
+
+void TextLog::fail_ragged(const char* b, const char* e) const {
+  const std::size_t found = count_fields(b, e, delimiter_);
+  const std::size_t column = found < fields_ ? found + 1 : fields_ + 1;
+  fail(line_, static_cast<std::int64_t>(column),
+       "expected " + std::to_string(fields_) + " fields, found " + std::to_string(found));
+}
+
+double TextLog::number_or_fail(const char* b, const char* e, std::size_t field) const {
+  const std::string_view text(b, static_cast<std::size_t>(e - b));
+  if (const auto v = to_number(text)) return *v;
+  const std::string_view shown = trim_field(text);
+  fail(line_, static_cast<std::int64_t>(field + 1),
+       shown.empty() ? std::string("expected a number, found an empty field")
+                     : "expected a number, found " + quote_field(shown));
+}
+
+void TextLog::time_or_fail(const char* b, const char* e, std::size_t field) {
+  if (parse_time_stamp(std::string_view(b, static_cast<std::size_t>(e - b)), stamp_)) return;
+  const std::string_view shown = trim_field(std::string_view(b, static_cast<std::size_t>(e - b)));
+  fail(line_, static_cast<std::int64_t>(field + 1),
+       "expected a number (time stamp), found " +
+           (shown.empty() ? std::string("an empty field") : quote_field(shown)));
+}
+
+void TextLog::fail_nonfinite() const {
+  for (std::size_t c = 0; c < fields_; ++c) {
+    const int slot = selection_.slots[c];
+    if (slot == kTimeColumn && !std::isfinite(stamp_.frac)) {
+      fail(line_, static_cast<std::int64_t>(c + 1), "non-finite time stamp (NaN or Inf)");
+    }
+    if (slot >= 0 && !std::isfinite(row_[static_cast<std::size_t>(slot)])) {
+      fail(line_, static_cast<std::int64_t>(c + 1),
+           "non-finite value (NaN or Inf) in column \"" +
+               selection_.channel_names[static_cast<std::size_t>(slot)] + "\"");
+    }
+  }
+  SIGMATAU_ASSERT(false, "a non-finite row without a non-finite field");
+  throw std::logic_error("unreachable");
+}
+
+template <TextLog::Mode M>
+bool TextLog::parse_row(const char* b, const char* e) {
+  const char d = delimiter_;
+  const int* const slots = selection_.slots.data();
+  double* const row = row_.data();
+  bool finite = true;
+  std::size_t f = 0;
+  const char* p = M == Mode::whitespace ? skip_blanks(b, e) : b;
+  for (;;) {
+    if constexpr (M == Mode::whitespace) {
+      if (p == e) break;
+    }
+    if (f == fields_) fail_ragged(b, e);
+    const int slot = slots[f];
+    const char* fe;
+    if (slot >= 0) {
+      double v;
+      const auto r = std::from_chars(p, e, v);
+      const bool ends = r.ptr == e || (M == Mode::whitespace ? is_blank(*r.ptr) : *r.ptr == d);
+      if (r.ec == std::errc() && ends) {
+        fe = r.ptr;
+      } else {
+        fe = M == Mode::whitespace ? find_blank(p, e) : find_char(p, e, d);
+        v = number_or_fail(p, fe, f);
+      }
+      row[slot] = v;
+      finite &= std::isfinite(v);
+    } else {
+      fe = M == Mode::whitespace ? find_blank(p, e) : find_char(p, e, d);
+      if (slot == kTimeColumn) {
+        time_or_fail(p, fe, f);
+        finite &= std::isfinite(stamp_.frac);
+      }
+    }
+    ++f;
+    if constexpr (M == Mode::whitespace) {
+      p = skip_blanks(fe, e);
+    } else {
+      if (fe == e) break;
+      p = fe + 1;
+    }
+  }
+  if (f != fields_) fail_ragged(b, e);
+  if (!finite) {
+    if (nonfinite_ == NonFinitePolicy::skip_row) return false;
+    fail_nonfinite();
+  }
+  return true;
+}
+
+template <TextLog::Mode M>
+std::int64_t TextLog::read_rows_as(SampleBlock& block, std::int64_t max_rows) {
+  const std::size_t channels = row_.size();
+  const bool timed = selection_.has_time;
+  std::int64_t rows = 0;
+  const char* b = nullptr;
+  const char* e = nullptr;
+  while (rows < max_rows && next_line(b, e)) {
+    if (e != b && e[-1] == '\r') --e;
+    const char* p = skip_blanks(b, e);
+    if (p == e || *p == '#' || *p == '%') continue;
+    if (!parse_row<M>(b, e)) {
+      timing_.add_skipped();
+      continue;
+    }
+    for (std::size_t k = 0; k < channels; ++k) block.values[k].push_back(row_[k]);
+    if (timed) {
+      block.t_s.push_back(timing_.seconds(stamp_));
+      timing_.add(stamp_, line_);
+    }
+    ++rows;
+  }
+  if (!timed) timing_.add_untimed(rows);
+  return rows;
+}
+
+std::int64_t TextLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
+  return mode_ == Mode::whitespace ? read_rows_as<Mode::whitespace>(block, max_rows)
+                                   : read_rows_as<Mode::delimited>(block, max_rows);
+}
+
+}  // namespace sigmatau::detail
