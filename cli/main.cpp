@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   sigmatau::cli::add_units_command(app);
   sigmatau::cli::add_psd_command(app);
   sigmatau::cli::add_check_command(app);
+  sigmatau::cli::add_analyze_command(app);
+  sigmatau::cli::add_demo_command(app);
   sigmatau::cli::add_specs_command(app);
   sigmatau::cli::add_convert_command(app);
   try {

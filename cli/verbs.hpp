@@ -12,6 +12,8 @@ struct ExitStatus {
 };
 
 void add_check_command(CLI::App& app);
+void add_analyze_command(CLI::App& app);
+void add_demo_command(CLI::App& app);
 
 void add_adev_command(CLI::App& app);
 void add_psd_command(CLI::App& app);

@@ -432,9 +432,12 @@ TEST_CASE("averaging factors for each tau specification") {
   REQUIRE(all.size() == 250);
   CHECK(all.front() == 1);
   CHECK(all.back() == 250);
-  // Explicit seconds at tau0 = 0.01 s: sorted, de-duplicated, beyond the stop ratio dropped.
-  CHECK(averaging_factors(parse_tau_spec("1,0.01,0.1,0.1,2.5,100"), Statistic::oadev, N, 0.01) ==
+  // Explicit seconds at tau0 = 0.01 s: sorted and de-duplicated; a tau beyond the stop ratio
+  // was asked for explicitly, so it is an error rather than a silently missing point.
+  CHECK(averaging_factors(parse_tau_spec("1,0.01,0.1,0.1,2.5"), Statistic::oadev, N, 0.01) ==
         V{1, 10, 100, 250});
+  CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("1,100"), Statistic::oadev, N, 0.01),
+                       doctest::Contains("too long for oadev"), Error);
   CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("0.015"), Statistic::oadev, N, 0.01),
                        doctest::Contains("not a multiple"), Error);
   CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("0.001"), Statistic::oadev, N, 0.01),

@@ -47,6 +47,10 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                 std::to_string(confidence_level));
   }
   const auto factors = averaging_factors(taus, statistic, series.size(), series.tau0_s());
+  if (factors.empty()) {
+    throw Error("the log (" + std::to_string(series.size() - 1) + " samples) is too short for " +
+                std::string(to_string(statistic)) + " at any tau");
+  }
   AllanCurve curve;
   curve.statistic = statistic;
   curve.confidence_level = confidence_level;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "sigmatau/error.hpp"
 
@@ -157,7 +158,17 @@ std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic stati
           throw Error("tau " + std::to_string(seconds) + " s is not a multiple of the sample interval " +
                       std::to_string(tau0_s) + " s");
         }
-        if (rounded > static_cast<double>(max_m)) continue;  // too long for this record
+        if (rounded > static_cast<double>(max_m)) {
+          // An explicitly asked tau that the record cannot give is an error, not a silent gap.
+          char text[200];
+          std::snprintf(text, sizeof text,
+                        "tau %g s is too long for %s on this log: the longest is %g s (m = %lld "
+                        "of %lld samples)",
+                        seconds, std::string(to_string(statistic)).c_str(),
+                        static_cast<double>(max_m) * tau0_s, static_cast<long long>(max_m),
+                        static_cast<long long>(n_phase_points - 1));
+          throw Error(text);
+        }
         m.push_back(static_cast<std::int64_t>(rounded));
       }
       std::sort(m.begin(), m.end());

@@ -30,7 +30,8 @@ std::int64_t max_averaging_factor(Statistic statistic, std::int64_t n_phase_poin
 /// Averaging factors for a spec: octave 1,2,4,...; decade 1,2,4,10,20,40,100,...; many:P P
 /// log-spaced per decade rounded to integers and de-duplicated; all 1..max; explicit seconds
 /// rounded to the nearest m >= 1 (a tau that is not a multiple of tau0 within 1e-9 relative is
-/// an Error). Capped at max_averaging_factor for the statistic.
+/// an Error, and so is an explicit tau beyond max_averaging_factor). The generated grids are
+/// capped at max_averaging_factor for the statistic.
 std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic statistic,
                                             std::int64_t n_phase_points, double tau0_s);
 

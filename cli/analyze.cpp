@@ -1,0 +1,268 @@
+// `sigmatau analyze` (the whole chain into one output directory) and `sigmatau demo` (the same on
+// a log simulated from a shipped data sheet).
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+#include "log_options.hpp"
+#include "sigmatau/analysis.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/report.hpp"
+#include "sigmatau/resources.hpp"
+#include "sigmatau/simulate.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct ChainArguments {
+  std::string statistics = "oadev";
+  std::string taus = "octave";
+  double ci = 0.683;
+  std::string spec;
+  std::vector<double> rate_out;
+  std::string trim = "auto";
+  std::string plot_format = "svg";
+  std::string convention = "two-sided";
+  std::string bias_model = "rw";
+  std::string output = "sigmatau-report";
+  bool force = false;
+  unsigned threads = 0;
+};
+
+struct AnalyzeArguments {
+  LogArguments log;
+  ChainArguments chain;
+  std::string gyro;
+  std::string accel;
+  std::string gyro_unit;
+  std::string accel_unit;
+};
+
+struct DemoArguments {
+  ChainArguments chain;
+  std::string sheet = "safran_stim300";
+  double hours = 3.0;
+  double rate_hz = 100.0;
+  std::uint64_t seed = 1;
+};
+
+void add_chain_options(CLI::App& command, ChainArguments& args) {
+  command.add_option("--stat", args.statistics,
+                     "statistics, comma-separated (the first is plotted and fitted)")
+      ->capture_default_str();
+  command.add_option("--taus", args.taus, "octave | decade | many[:P] | all | seconds list")
+      ->capture_default_str();
+  command.add_option("--ci", args.ci, "confidence level of every interval")->capture_default_str();
+  command.add_option("--spec", args.spec, "data sheet to check against (file or name in specs/)");
+  command.add_option("--rate-out", args.rate_out,
+                     "filter rates [Hz] for the covariances and exports (default: the log's rate)");
+  command.add_option("--trim", args.trim,
+                     "warm-up: auto (detect and trim), none, or a duration in seconds")
+      ->capture_default_str();
+  command.add_option("--plot-format", args.plot_format, "svg | png | pdf (report.html always inlines SVG)")
+      ->capture_default_str();
+  command.add_option("--density-convention", args.convention,
+                     "how the data sheet's noise density is read: two-sided (N = ND) or one-sided")
+      ->capture_default_str();
+  command.add_option("--bias-model", args.bias_model, "filter bias model: rw | gm")->capture_default_str();
+  command.add_option("-o,--output", args.output, "output directory (written atomically)")
+      ->capture_default_str();
+  command.add_flag("--force", args.force, "replace an existing output directory");
+  command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+AnalysisOptions chain_options(const ChainArguments& args) {
+  AnalysisOptions options;
+  options.statistics.clear();
+  for (const auto& s : split_list(args.statistics, "--stat")) options.statistics.push_back(parse_statistic(s));
+  options.taus = parse_tau_spec(args.taus);
+  if (!(args.ci > 0 && args.ci < 1)) throw Error("--ci must be between 0 and 1, got " + std::to_string(args.ci));
+  options.confidence = args.ci;
+  if (args.trim == "auto") {
+    options.trim = TrimMode::automatic;
+  } else if (args.trim == "none") {
+    options.trim = TrimMode::none;
+  } else {
+    options.trim = TrimMode::fixed;
+    options.trim_s = parse_quantity_as(args.trim.find_first_not_of("0123456789.eE+-") == std::string::npos
+                                           ? args.trim + " s" : args.trim,
+                                       dim::time, "--trim");
+  }
+  for (double r : args.rate_out) {
+    if (!(r > 0)) throw Error("--rate-out must be > 0 Hz, got " + std::to_string(r));
+  }
+  options.filter_rates_hz = args.rate_out;
+  if (!args.spec.empty()) options.spec = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
+  options.convention = parse_density_convention(args.convention);
+  options.bias_model = parse_bias_model(args.bias_model);
+  options.threads = args.threads;
+  options.created_utc = utc_now();
+  return options;
+}
+
+void finish(AnalysisInput input, const ChainArguments& args, const std::map<std::string, std::string>& extra) {
+  const PlotFormat plot_format = parse_plot_format(args.plot_format);
+  std::error_code ec;
+  if (std::filesystem::exists(args.output, ec) && !args.force) {
+    throw Error(args.output + " exists; use --force to replace it");
+  }
+  const AnalysisOptions options = chain_options(args);
+  const auto start = std::chrono::steady_clock::now();
+  AnalysisOutput analysis = run_analysis(std::move(input), options);
+  ReportOptions report_options;
+  report_options.plot_format = plot_format;
+  ReportFiles files = build_report(analysis.results_json, report_options);
+  files.files["results.json"] = analysis.results_json;
+  for (const auto& [name, text] : analysis.filter_files) files.files[name] = text;
+  for (const auto& [name, text] : extra) files.files[name] = text;
+  write_output_directory(args.output, files, args.force);
+  for (const auto& w : analysis.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
+  for (const auto& w : files.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << files.files.at("summary.md") << "\nwrote " << args.output << "/ (" << files.files.size()
+            << " files: report.html, results.json, summary.md, plots, filter files) in "
+            << seconds << " s\n";
+}
+
+void run_analyze(const AnalyzeArguments& args) {
+  LogArguments log_args = args.log;
+  const std::string common_unit = log_args.unit;
+  log_args.unit.clear();  // per-sensor units are applied below
+  LoadedChannels loaded = load_channels(log_args);
+  AnalysisInput input;
+  input.path = loaded.log.path;
+  input.rate_hz = loaded.rate_hz;
+  input.kind = loaded.kind;
+  if (loaded.log.timing.has_time) input.timing = loaded.log.timing;
+  std::error_code ec;
+  if (input.path != "-") {
+    input.bytes = static_cast<std::int64_t>(std::filesystem::file_size(input.path, ec));
+    if (ec) input.bytes = -1;
+    input.crc32 = file_crc32(input.path);
+  }
+  // Explicit --gyro / --accel columns override the name-based roles.
+  std::map<std::string, ChannelRole> forced;
+  auto force_roles = [&](const std::string& list, Sensor sensor, const char* option) {
+    if (list.empty()) return;
+    const auto names = split_list(list, option);
+    if (names.size() != 3) throw Error(std::string(option) + " needs three columns x,y,z");
+    for (int axis = 0; axis < 3; ++axis) forced[names[axis]] = {sensor, axis};
+  };
+  force_roles(args.gyro, Sensor::gyro, "--gyro");
+  force_roles(args.accel, Sensor::accel, "--accel");
+  const std::string gyro_unit = !args.gyro_unit.empty() ? args.gyro_unit : common_unit;
+  const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : common_unit;
+  for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
+    AnalysisChannel channel;
+    channel.name = loaded.log.channel_names[c];
+    if (forced.count(channel.name)) {
+      channel.role = forced[channel.name];
+    } else if (forced.empty()) {
+      channel.role = classify_channel(channel.name);
+    }
+    if (!forced.empty() && !forced.count(channel.name)) continue;  // only the named columns
+    std::string unit;
+    if (channel.role) unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
+    double factor = 1;
+    if (!unit.empty()) {
+      Dimension expected = channel.role->sensor == Sensor::gyro ? dim::angular_rate : dim::acceleration;
+      if (loaded.kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
+      factor = parse_unit_as(unit, expected, channel.role->sensor == Sensor::gyro ? "--gyro-unit" : "--accel-unit").factor;
+    }
+    channel.values = std::move(loaded.log.channels[c]);
+    if (factor != 1) {
+      for (double& v : channel.values) v *= factor;
+    }
+    input.input_units.push_back(unit);
+    input.channels.push_back(std::move(channel));
+  }
+  finish(std::move(input), args.chain, {});
+}
+
+void run_demo(const DemoArguments& args) {
+  const DataSheet sheet = load_data_sheet(find_data_sheet(args.sheet, resource_dir("specs")));
+  if (!(args.hours > 0) || !(args.rate_hz > 0)) throw Error("--hours and --rate must be > 0");
+  SimulationConfig config;
+  config.rate_hz = args.rate_hz;
+  config.samples = static_cast<std::int64_t>(std::llround(args.hours * 3600 * args.rate_hz));
+  config.seed = args.seed;
+  StaticPose pose;
+  pose.latitude_rad = 45.0 * 3.14159265358979323846 / 180.0;
+  config.truth = static_truth(pose);
+  config.threads = args.chain.threads == 0 ? 2 : args.chain.threads;
+  for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+    if (!sheet.sensor(sensor)) continue;
+    const TriadNoise triad = triad_from_data_sheet(sheet, sensor, parse_density_convention(args.chain.convention));
+    ErrorModel model;
+    model.noise = triad.axes;
+    (sensor == Sensor::gyro ? config.gyro : config.accel) = model;
+  }
+  Simulator simulator(config);
+  AnalysisInput input;
+  input.path = "demo: " + sheet.manufacturer + " " + sheet.part + " simulated from specs/" +
+               sheet.name + ".yaml (" + std::to_string(args.hours) + " h at " +
+               std::to_string(args.rate_hz) + " Hz, seed " + std::to_string(args.seed) + ")";
+  input.rate_hz = args.rate_hz;
+  const auto names = simulator.channel_names();
+  for (const auto& name : names) {
+    AnalysisChannel channel;
+    channel.name = name;
+    channel.role = classify_channel(name);
+    channel.values.reserve(static_cast<std::size_t>(config.samples));
+    input.channels.push_back(std::move(channel));
+    input.input_units.push_back("");
+  }
+  std::vector<double> block(static_cast<std::size_t>(65536) * names.size());
+  while (true) {
+    const std::int64_t rows = simulator.next(block, 65536);
+    if (rows == 0) break;
+    for (std::int64_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < names.size(); ++c) input.channels[c].values.push_back(block[r * names.size() + c]);
+    }
+  }
+  ChainArguments chain = args.chain;
+  if (chain.spec.empty()) chain.spec = args.sheet;
+  if (chain.trim == "auto") chain.trim = "none";  // a simulated log has no warm-up
+  finish(std::move(input), chain, {{"truth.json", simulation_sidecar_json(config)}});
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app) {
+  auto args = std::make_shared<AnalyzeArguments>();
+  CLI::App* command = app.add_subcommand(
+      "analyze", "The whole chain on one log: Allan curves, PSD, noise terms, filter covariances, "
+                 "data-sheet check, plots and report.html in one directory");
+  add_log_options(*command, args->log);
+  command->add_option("--gyro", args->gyro, "gyro columns x,y,z (default: recognised by name)");
+  command->add_option("--accel", args->accel, "accelerometer columns x,y,z (default: by name)");
+  command->add_option("--gyro-unit", args->gyro_unit, "unit of the gyro columns (default rad/s)");
+  command->add_option("--accel-unit", args->accel_unit, "unit of the accelerometer columns (default m/s^2)");
+  add_chain_options(*command, args->chain);
+  command->callback([args] { run_analyze(*args); });
+}
+
+void add_demo_command(CLI::App& app) {
+  auto args = std::make_shared<DemoArguments>();
+  args->chain.output = "demo-output";
+  CLI::App* command = app.add_subcommand(
+      "demo", "Simulate a log from a shipped data sheet and run `analyze` on it (the built-in demo)");
+  command->add_option("--sheet", args->sheet, "data sheet to simulate (name in specs/)")->capture_default_str();
+  command->add_option("--hours", args->hours, "simulated duration [h]")->capture_default_str();
+  command->add_option("--rate", args->rate_hz, "simulated sample rate [Hz]")->capture_default_str();
+  command->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  add_chain_options(*command, args->chain);
+  command->callback([args] { run_demo(*args); });
+}
+
+}  // namespace sigmatau::cli
