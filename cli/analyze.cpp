@@ -110,13 +110,15 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   return options;
 }
 
-void finish(AnalysisInput input, const ChainArguments& args, const std::map<std::string, std::string>& extra) {
+void finish(AnalysisInput input, const ChainArguments& args,
+            const std::map<std::string, std::string>& extra, std::int64_t flicker_taps = 0) {
   const PlotFormat plot_format = parse_plot_format(args.plot_format);
   std::error_code ec;
   if (std::filesystem::exists(args.output, ec) && !args.force) {
     throw Error(args.output + " exists; use --force to replace it");
   }
-  const AnalysisOptions options = chain_options(args);
+  AnalysisOptions options = chain_options(args);
+  options.flicker_taps = flicker_taps;
   const auto start = std::chrono::steady_clock::now();
   AnalysisOutput analysis = run_analysis(std::move(input), options);
   ReportOptions report_options;
@@ -233,7 +235,8 @@ void run_demo(const DemoArguments& args) {
   ChainArguments chain = args.chain;
   if (chain.spec.empty()) chain.spec = args.sheet;
   if (chain.trim == "auto") chain.trim = "none";  // a simulated log has no warm-up
-  finish(std::move(input), chain, {{"truth.json", simulation_sidecar_json(config)}});
+  finish(std::move(input), chain, {{"truth.json", simulation_sidecar_json(config)}},
+         flicker_taps(config));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/filter_export.hpp"
+#include "sigmatau/fit.hpp"
 #include "sigmatau/warmup.hpp"
 
 namespace sigmatau {
@@ -82,6 +84,83 @@ json psd_json(const PsdCurve& binned, const NoiseDensity& nd, const std::string&
 std::string si_rate_unit(const std::optional<ChannelRole>& role) {
   if (!role) return "";
   return role->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
+}
+
+/// SI units of the fitted parameters (noise_model.hpp), per sensor.
+std::string parameter_unit(NoiseTerm term, Sensor sensor) {
+  const bool gyro = sensor == Sensor::gyro;
+  switch (term) {
+    case NoiseTerm::quantization: return gyro ? "rad" : "m/s";
+    case NoiseTerm::white: return gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
+    case NoiseTerm::bias_instability: return gyro ? "rad/s" : "m/s^2";
+    case NoiseTerm::rate_random_walk: return gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
+    case NoiseTerm::rate_ramp: return gyro ? "rad/s^2" : "m/s^3";
+    default: return "";
+  }
+}
+
+/// Points of the model drawn over the curve: the fitted total and each term's asymptote.
+constexpr int kModelPoints = 60;
+
+/// The fit of one channel in the JSON shape, plus what the plots draw.
+json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, double tau_lo,
+              double tau_hi) {
+  json parameters = json::object();
+  json model_terms = json::array();
+  for (NoiseTerm term : fit.model_terms) model_terms.push_back(std::string(term_symbol(term)));
+  for (const auto& p : fit.parameters) {
+    const std::string key(term_symbol(p.term));
+    json entry = {{"unit", parameter_unit(p.term, sensor)}};
+    if (p.in_model) {
+      entry["value"] = p.value;
+      entry["ci_low"] = p.ci_low;
+      entry["ci_high"] = p.ci_high;
+      if (std::isfinite(p.edf)) entry["edf"] = p.edf;
+      if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+    } else {
+      entry["upper_bound"] = p.upper_bound;
+    }
+    parameters[key] = entry;
+  }
+  // The fitted model and each term's IEEE asymptote on a log grid over the curve's taus.
+  const NoiseTerms terms = fit.noise_terms();
+  std::vector<double> taus, total;
+  json per_term = json::object();
+  for (int i = 0; i < kModelPoints; ++i) {
+    const double tau = tau_lo * std::pow(tau_hi / tau_lo, static_cast<double>(i) / (kModelPoints - 1));
+    taus.push_back(tau);
+    total.push_back(std::sqrt(continuous_avar(terms, tau)));
+  }
+  json readouts = json::array();
+  for (NoiseTerm term : fit.model_terms) {
+    const auto& p = fit.parameter(term);
+    std::vector<double> line;
+    for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
+    per_term[std::string(term_symbol(term))] = line;
+    const ReadOff r = read_off(term);
+    double tau_read = r.tau_read_s;
+    if (term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s) && p.tau_min_s > 0) tau_read = p.tau_min_s;
+    if (tau_read >= tau_lo && tau_read <= tau_hi) {
+      readouts.push_back({{"term", std::string(term_symbol(term))}, {"tau", tau_read},
+                          {"adev", adev_line(term, p.value, tau_read)}});
+    }
+  }
+  return {{"name", name},
+          {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
+          {"model_terms", model_terms},
+          {"parameters", parameters},
+          {"method", std::string(to_string(fit.method))},
+          {"chi_squared", number_or_null(fit.chi_squared)},
+          {"bic", number_or_null(fit.bic)},
+          {"model_adev", {{"tau", taus}, {"adev", total}}},
+          {"terms_adev", per_term},
+          {"readouts", readouts}};
+}
+
+std::string rate_label(double rate_hz) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%gHz", rate_hz);
+  return text;
 }
 
 }  // namespace
@@ -218,6 +297,146 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       warnings.push_back(channel.name + ": no PSD (" + e.what() + ")");
     }
     results["channels"].push_back(entry);
+  }
+
+  // Noise-term fit of every sensor channel (joint fit, model chosen by BIC) on the first curve,
+  // which must be OADEV for the fit.
+  std::array<std::optional<TriadNoise>, 2> triads;  // gyro, accel
+  std::vector<MeasuredParameter> measured;
+  json fits = json::array();
+  const bool first_is_oadev = options.statistics.front() == Statistic::oadev;
+  for (std::size_t c = 0; c < input.channels.size(); ++c) {
+    const auto& channel = input.channels[c];
+    if (!channel.role) continue;
+    if (!first_is_oadev) {
+      warnings.push_back("noise terms are fitted from OADEV: put oadev first in --stat to fit them");
+      break;
+    }
+    FitOptions fit_options;
+    fit_options.confidence_level = options.confidence;
+    CurveSource source;
+    source.tau0_s = 1.0 / input.rate_hz;
+    source.n_phase_points = series[c].size();
+    source.flicker_taps = options.flicker_taps;
+    try {
+      const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
+      const ChannelFit& joint = *fit.joint;
+      const auto& points = curves[c].front().points;
+      fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
+                              points.back().value.tau_s));
+      const int s = channel.role->sensor == Sensor::gyro ? 0 : 1;
+      if (!triads[s]) {
+        triads[s] = TriadNoise{};
+        triads[s]->sensor = channel.role->sensor;
+        triads[s]->white_origin = "N fitted from the Allan variance (joint fit)";
+        triads[s]->bias_origin = "B / K fitted from the Allan variance (joint fit)";
+      }
+      triads[s]->axes[channel.role->axis] = joint.noise_terms();
+      const std::string axis(1, static_cast<char>('x' + channel.role->axis));
+      const std::pair<NoiseTerm, MeasuredQuantity> kMeasured[] = {
+          {NoiseTerm::white, MeasuredQuantity::white_noise},
+          {NoiseTerm::bias_instability, MeasuredQuantity::bias_instability},
+          {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
+      for (const auto& [term, quantity] : kMeasured) {
+        const auto& p = joint.parameter(term);
+        if (p.in_model) measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
+      }
+    } catch (const Error& e) {
+      warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");
+    }
+  }
+  results["fit"] = {{"method", "joint"}, {"confidence", options.confidence}, {"channels", fits}};
+
+  // Filter covariances and exports at each rate.
+  results["filter"] = json::array();
+  std::vector<TriadNoise> present;
+  for (const auto& t : triads) {
+    if (t) present.push_back(*t);
+  }
+  if (!present.empty()) {
+    std::vector<double> rates = options.filter_rates_hz;
+    if (rates.empty()) rates.push_back(input.rate_hz);
+    for (double rate : rates) {
+      ConvertOptions convert;
+      convert.rate_hz = rate;
+      convert.bias_model = options.bias_model;
+      convert.convention = options.convention;
+      try {
+        const DiscreteNoise noise = convert_noise(present, convert, "noise terms fitted by sigmatau analyze");
+        const std::string label = rate_label(rate);
+        const std::pair<ExportFormat, std::string> kFiles[] = {
+            {ExportFormat::json, "filter_" + label + ".json"},
+            {ExportFormat::kalibr, "kalibr_imu_" + label + ".yaml"},
+            {ExportFormat::openvins, "openvins_imu_" + label + ".yaml"},
+            {ExportFormat::vins_fusion, "vins_fusion_" + label + ".yaml"},
+            {ExportFormat::gtsam, "gtsam_" + label + ".txt"},
+            {ExportFormat::px4, "px4_ekf2_" + label + ".params"}};
+        json entry = {{"rate_hz", rate}, {"explain", noise.explain}, {"files", json::array()}};
+        for (const auto& [format, file] : kFiles) {
+          const std::string text = export_filter_config(noise, format);
+          output.filter_files[file] = text;
+          entry["files"].push_back(file);
+          if (format == ExportFormat::json) entry["discrete"] = json::parse(text);
+        }
+        results["filter"].push_back(entry);
+      } catch (const Error& e) {
+        warnings.push_back("no filter covariances at " + rate_label(rate) + " (" + e.what() + ")");
+      }
+    }
+  }
+
+  // Data-sheet compliance and the sheet's lines for the plots.
+  results["compliance"] = nullptr;
+  if (options.spec) {
+    const DataSheet& sheet = *options.spec;
+    ComplianceOptions compliance_options;
+    compliance_options.convention = options.convention;
+    const auto items = check_compliance(measured, sheet, compliance_options);
+    json list = json::array();
+    int pass = 0, marginal = 0, fail = 0;
+    for (const auto& item : items) {
+      json j = {{"sensor", std::string(to_string(item.measured.sensor))},
+                {"quantity", std::string(to_string(item.measured.quantity))},
+                {"axis", item.measured.axis},
+                {"value", item.measured.value},
+                {"ci_low", item.measured.ci_low},
+                {"ci_high", item.measured.ci_high},
+                {"verdict", std::string(to_string(item.verdict))}};
+      if (item.verdict != Verdict::not_specified) {
+        j["spec_field"] = item.spec_field;
+        j["limit_text"] = item.limit_text;
+        j["limit_is_typical"] = item.limit_is_typical;
+        j["limit_si"] = item.limit_si;
+        j["compared"] = item.compared;
+        j["compared_upper"] = item.compared_upper;
+        j["margin"] = item.margin;
+        j["margin_upper"] = item.margin_upper;
+        j["rule"] = item.rule;
+      }
+      pass += item.verdict == Verdict::pass;
+      marginal += item.verdict == Verdict::marginal;
+      fail += item.verdict == Verdict::fail;
+      list.push_back(j);
+    }
+    const std::string verdict = fail > 0 ? "fail" : marginal > 0 ? "marginal" : pass > 0 ? "all pass" : "nothing to check";
+    results["compliance"] = {{"spec", {{"name", sheet.name}, {"part", sheet.part}, {"manufacturer", sheet.manufacturer}}},
+                             {"convention", std::string(to_string(options.convention))},
+                             {"verdict", verdict},
+                             {"items", list}};
+    json lines = json::object();
+    for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+      if (!sheet.sensor(sensor)) continue;
+      try {
+        const TriadNoise t = triad_from_data_sheet(sheet, sensor, options.convention);
+        json l = json::object();
+        if (t.axes[0].white) l["white"] = *t.axes[0].white;
+        if (t.axes[0].bias_instability) l["bias_floor"] = kFlickerFloorFactor * *t.axes[0].bias_instability;
+        if (!l.empty()) lines[std::string(to_string(sensor))] = l;
+      } catch (const Error&) {
+        // A section without noise figures has no lines to draw.
+      }
+    }
+    results["spec_lines"] = lines;
   }
 
   results["warnings"] = warnings;
