@@ -21,5 +21,6 @@ void add_units_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_specs_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
 
 }  // namespace sigmatau::cli

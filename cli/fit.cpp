@@ -1,0 +1,325 @@
+// `sigmatau fit`: noise terms (Q, N, B, K, R) with confidence intervals from a log or from a
+// saved `sigmatau adev --format json` result (detected by content).
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "log_options.hpp"
+#include "sigmatau/allan_curve.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/fit.hpp"
+#include "sigmatau/output_file.hpp"
+#include "verbs.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+struct FitArguments {
+  LogArguments log;
+  std::string method = "joint";
+  std::string terms;
+  double ci = 0.95;
+  std::string format = "table";
+  std::string output;
+  bool force = false;
+  unsigned threads = 0;
+};
+
+/// Bytes read from the start of INPUT to tell a saved JSON result from a log.
+constexpr std::size_t kSniffBytes = 4096;
+
+struct Channel {
+  std::string name;
+  Sensor sensor = Sensor::gyro;
+  NoiseFit fit;
+};
+
+/// SI unit (JSON) and data-sheet unit (table) of each term, per sensor.
+struct TermUnits {
+  const char* si;
+  const char* sheet;
+};
+TermUnits units_of(NoiseTerm term, Sensor sensor) {
+  const bool g = sensor == Sensor::gyro;
+  switch (term) {
+    case NoiseTerm::quantization: return g ? TermUnits{"rad", "arcsec"} : TermUnits{"m/s", "m/s"};
+    case NoiseTerm::white:
+      return g ? TermUnits{"rad/s/sqrt(Hz)", "deg/sqrt(h)"} : TermUnits{"m/s^2/sqrt(Hz)", "ug/sqrt(Hz)"};
+    case NoiseTerm::bias_instability: return g ? TermUnits{"rad/s", "deg/h"} : TermUnits{"m/s^2", "ug"};
+    case NoiseTerm::rate_random_walk:
+      return g ? TermUnits{"rad/s^2/sqrt(Hz)", "deg/h/sqrt(h)"}
+               : TermUnits{"m/s^3/sqrt(Hz)", "m/s/h^1.5"};
+    default: return g ? TermUnits{"rad/s^2", "deg/h^2"} : TermUnits{"m/s^3", "m/s/h^2"};
+  }
+}
+
+std::string_view term_name(NoiseTerm term, Sensor sensor) {
+  switch (term) {
+    case NoiseTerm::quantization: return "quantization";
+    case NoiseTerm::white: return sensor == Sensor::gyro ? "angle random walk" : "velocity random walk";
+    case NoiseTerm::bias_instability: return "bias instability";
+    case NoiseTerm::rate_random_walk: return "rate random walk";
+    default: return "rate ramp";
+  }
+}
+
+std::optional<Sensor> sensor_from_name(const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(name[0])));
+  if (c == 'g' || c == 'w') return Sensor::gyro;
+  if (c == 'a') return Sensor::accel;
+  return std::nullopt;
+}
+
+Sensor sensor_of(const std::string& name, std::optional<Sensor> from_unit) {
+  if (from_unit) return *from_unit;
+  if (auto s = sensor_from_name(name)) return *s;
+  throw Error("cannot tell whether channel \"" + name +
+              "\" is a gyro or an accelerometer: give --unit (e.g. deg/s or m/s^2) or name it "
+              "g.. / a..");
+}
+
+nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& p : fit.parameters) {
+    nlohmann::json j;
+    if (p.in_model) {
+      j["value"] = p.value;
+      j["ci_low"] = p.ci_low;
+      j["ci_high"] = p.ci_high;
+    } else {
+      j["upper_bound"] = p.upper_bound;
+    }
+    j["unit"] = units_of(p.term, sensor).si;
+    if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) j["tau_min_s"] = p.tau_min_s;
+    params[std::string(term_symbol(p.term))] = j;
+  }
+  return params;
+}
+
+nlohmann::json terms_json(const ChannelFit& fit) {
+  nlohmann::json t = nlohmann::json::array();
+  for (const auto term : fit.model_terms) t.push_back(std::string(term_symbol(term)));
+  return t;
+}
+
+std::string render_json(const std::string& input, const std::vector<Channel>& channels,
+                        const std::vector<TriadSummary>& triads, double ci) {
+  nlohmann::json doc;
+  doc["tool"] = "sigmatau";
+  doc["version"] = SIGMATAU_VERSION;
+  doc["input"] = {{"path", input}};
+  doc["confidence"] = ci;
+  doc["channels"] = nlohmann::json::array();
+  for (const auto& c : channels) {
+    const ChannelFit& primary = c.fit.joint ? *c.fit.joint : *c.fit.slopes;
+    nlohmann::json j;
+    j["name"] = c.name;
+    j["quantity"] = c.sensor == Sensor::gyro ? "angular_rate" : "specific_force";
+    j["model_terms"] = terms_json(primary);
+    j["parameters"] = parameters_json(primary, c.sensor);
+    j["method"] = std::string(to_string(primary.method));
+    j["points"] = primary.points;
+    if (c.fit.joint) {
+      j["chi_squared"] = primary.chi_squared;
+      j["bic"] = primary.bic;
+    }
+    if (c.fit.joint && c.fit.slopes) {
+      j["slopes"] = {{"model_terms", terms_json(*c.fit.slopes)},
+                     {"parameters", parameters_json(*c.fit.slopes, c.sensor)},
+                     {"method", "slopes"}};
+    }
+    doc["channels"].push_back(j);
+  }
+  doc["triads"] = nlohmann::json::array();
+  for (const auto& t : triads) {
+    nlohmann::json j;
+    j["sensor"] = std::string(to_string(t.sensor));
+    j["channels"] = t.channels;
+    j["parameters"] = nlohmann::json::object();
+    for (const auto& e : t.entries) {
+      j["parameters"][std::string(term_symbol(e.term))] = {
+          {"mean", e.mean}, {"worst", e.worst}, {"worst_channel", e.worst_channel},
+          {"channels_in_model", e.channels_in_model}, {"unit", units_of(e.term, t.sensor).si}};
+    }
+    doc["triads"].push_back(j);
+  }
+  return doc.dump(1) + "\n";
+}
+
+void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
+               const ChannelFit& fit, double ci) {
+  out << "\n# " << name << "  " << to_string(fit.method) << "  model ";
+  for (std::size_t i = 0; i < fit.model_terms.size(); ++i) {
+    out << (i ? "," : "") << term_symbol(fit.model_terms[i]);
+  }
+  out << "  (" << ci * 100 << "% intervals)\n";
+  char line[200];
+  std::snprintf(line, sizeof line, "%-2s %-22s %13s %13s %13s  %s\n", "", "term", "ci_low", "value",
+                "ci_high", "unit");
+  out << line;
+  for (const auto& p : fit.parameters) {
+    const TermUnits u = units_of(p.term, sensor);
+    const double f = convert(1.0, u.si, u.sheet);
+    const std::string sym(term_symbol(p.term));
+    const std::string nm(term_name(p.term, sensor));
+    if (p.in_model) {
+      std::snprintf(line, sizeof line, "%-2s %-22s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
+                    p.ci_low * f, p.value * f, p.ci_high * f, u.sheet);
+    } else {
+      std::snprintf(line, sizeof line, "%-2s %-22s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
+                    sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, u.sheet);
+    }
+    out << line;
+    if (p.in_model && p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) {
+      out << "  (ADEV minimum at tau = " << p.tau_min_s << " s)";
+    }
+    out << "\n";
+  }
+}
+
+std::string render_table(const std::string& input, const std::vector<Channel>& channels,
+                         const std::vector<TriadSummary>& triads, double ci) {
+  std::ostringstream out;
+  out << "# " << input << ": noise terms from the OADEV curve\n";
+  for (const auto& c : channels) {
+    if (c.fit.joint) table_for(out, c.name, c.sensor, *c.fit.joint, ci);
+    if (c.fit.slopes) table_for(out, c.name, c.sensor, *c.fit.slopes, ci);
+  }
+  for (const auto& t : triads) {
+    out << "\n# " << to_string(t.sensor) << " triad (";
+    for (std::size_t i = 0; i < t.channels.size(); ++i) out << (i ? "," : "") << t.channels[i];
+    out << "): mean and worst axis\n";
+    for (const auto& e : t.entries) {
+      const TermUnits u = units_of(e.term, t.sensor);
+      const double f = convert(1.0, u.si, u.sheet);
+      char line[200];
+      std::snprintf(line, sizeof line, "%-2s %-22s mean %12.5g  worst %12.5g (%s)  %s\n",
+                    std::string(term_symbol(e.term)).c_str(),
+                    std::string(term_name(e.term, t.sensor)).c_str(), e.mean * f, e.worst * f,
+                    e.worst_channel.c_str(), u.sheet);
+      out << line;
+    }
+  }
+  return out.str();
+}
+
+std::string sniff(const std::string& path) {
+  if (path == "-") return {};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::string head(kSniffBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head;
+}
+
+void run_fit(const FitArguments& args) {
+  FitOptions options;
+  options.method = parse_fit_method(args.method);
+  if (!args.terms.empty()) options.terms = parse_fit_terms(args.terms);
+  if (!(args.ci > 0 && args.ci < 1)) {
+    throw Error("--ci: confidence level must be in (0, 1), got " + std::to_string(args.ci));
+  }
+  options.confidence_level = args.ci;
+  if (args.format != "table" && args.format != "json") {
+    throw Error("--format must be table or json, got \"" + args.format + "\"");
+  }
+  if (!args.output.empty()) check_can_write(args.output, args.force);
+
+  std::vector<Channel> channels;
+  if (looks_like_json(sniff(args.log.input))) {
+    std::ifstream in(args.log.input, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    for (const auto& saved : read_adev_json(text.str(), args.log.input)) {
+      Channel c;
+      c.name = saved.channel;
+      c.sensor = sensor_of(saved.channel, saved.sensor);
+      try {
+        c.fit = fit_noise(saved.curve, saved.source, options);
+      } catch (const Error& e) {
+        throw Error(args.log.input + ": channel " + saved.channel + ": " + e.what());
+      }
+      channels.push_back(std::move(c));
+    }
+  } else {
+    LoadedChannels loaded = load_channels(args.log);
+    std::optional<Sensor> from_unit;
+    if (!loaded.unit.empty()) {
+      Dimension d = loaded.dimension;
+      if (loaded.kind != DataKind::rate) d.time2 -= 2;
+      if (d == dim::angular_rate) from_unit = Sensor::gyro;
+      if (d == dim::acceleration) from_unit = Sensor::accel;
+      if (!from_unit) {
+        throw Error("--unit " + loaded.unit + " (--kind " + std::string(to_string(loaded.kind)) +
+                    ") is neither an angular rate nor an acceleration");
+      }
+    }
+    std::vector<PhaseSeries> series;
+    for (auto& channel : loaded.log.channels) {
+      series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+      std::vector<double>().swap(channel);
+    }
+    const auto curves =
+        compute_allan_curves(series, {Statistic::oadev}, TauSpec{}, 0.683, args.threads);
+    for (std::size_t i = 0; i < series.size(); ++i) {
+      Channel c;
+      c.name = loaded.log.channel_names[i];
+      c.sensor = sensor_of(c.name, from_unit);
+      const CurveSource source{series[i].tau0_s(), series[i].size(), 0};
+      try {
+        c.fit = fit_noise(curves[i].front(), source, options);
+      } catch (const Error& e) {
+        throw Error(args.log.input + ": channel " + c.name + ": " + e.what());
+      }
+      channels.push_back(std::move(c));
+    }
+  }
+
+  std::vector<std::string> names;
+  std::vector<Sensor> sensors;
+  std::vector<const ChannelFit*> fits;
+  for (const auto& c : channels) {
+    names.push_back(c.name);
+    sensors.push_back(c.sensor);
+    fits.push_back(c.fit.joint ? &*c.fit.joint : &*c.fit.slopes);
+  }
+  const auto triads = summarise_triads(names, sensors, fits);
+  const std::string text = args.format == "json"
+                               ? render_json(args.log.input, channels, triads, args.ci)
+                               : render_table(args.log.input, channels, triads, args.ci);
+  if (args.output.empty()) {
+    std::cout << text;
+  } else {
+    write_file_atomically(args.output, text, args.force);
+  }
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto args = std::make_shared<FitArguments>();
+  CLI::App* command = app.add_subcommand(
+      "fit", "Noise terms (Q, N, B, K, R) with confidence intervals, from a log or a saved "
+             "`adev --format json` result: a joint fit that keeps only the terms the data "
+             "supports, and/or the IEEE slope read-outs");
+  add_log_options(*command, args->log);
+  command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
+  command->add_option("--terms", args->terms,
+                      "force the model, e.g. N,B,K (default: chosen by BIC among Q,N,B,K,R)");
+  command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
+      ->capture_default_str();
+  command->add_option("--format", args->format, "table | json")->capture_default_str();
+  command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
+  command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->add_option("--threads", args->threads, "worker threads for the curves (0: one per core)")
+      ->capture_default_str();
+  command->callback([args] { run_fit(*args); });
+}
+
+}  // namespace sigmatau::cli

@@ -1,0 +1,169 @@
+#pragma once
+/// \file fit.hpp
+/// Noise terms with uncertainties from an overlapping Allan variance curve: the IEEE 952 / 1293
+/// slope read-outs, and a joint fit that models only what the data supports.
+///
+/// Joint fit (GMWM-style, Guerrier et al. 2013): the OAVAR at octave averaging factors is
+/// modelled as the sum of the exact discrete-time AVAR of each term (noise_model.hpp,
+/// sampled_avar), linear in theta = (Q^2, N^2, B^2, K^2, R^2) >= 0, and solved by non-negative
+/// generalised least squares whose weight is the inverse of the exact covariance of the OAVAR
+/// estimates across taus under the fitted model (oavar_covariance), iterated with the model.
+/// Candidate subsets of terms are compared by BIC; terms not kept are reported as upper bounds.
+///
+/// References:
+///  - IEEE Std 952-1997 Annex C; IEEE Std 1293-1998 (read-off rules; THEORY.md section 2).
+///  - S. Guerrier, J. Skaloud, Y. Stebler, M.-P. Victoria-Feser, "Wavelet-variance-based
+///    estimation for composite stochastic processes", JASA 108 (2013) 1021 (GMWM).
+///  - S. Guerrier, R. Molinari, Y. Stebler, "Theoretical limitations of Allan variance-based
+///    regression for time series model estimation", IEEE SPL 23(5) (2016) 597.
+///  - C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems", 1974, ch. 23 (NNLS).
+///  - G. Schwarz, "Estimating the dimension of a model", Ann. Stat. 6 (1978) 461 (BIC).
+///  - F. E. Satterthwaite, "An approximate distribution of estimates of variance components",
+///    Biometrics Bull. 2 (1946) 110 (effective degrees of freedom of the intervals).
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sigmatau/allan_curve.hpp"
+#include "sigmatau/noise_model.hpp"
+
+namespace sigmatau {
+
+/// The terms the fit can model (linear in their squared parameter): Q, N, B, K, R.
+inline constexpr std::array<NoiseTerm, 5> kFitTerms{
+    NoiseTerm::quantization, NoiseTerm::white, NoiseTerm::bias_instability,
+    NoiseTerm::rate_random_walk, NoiseTerm::rate_ramp};
+
+/// "Q", "N", "B", "K", "R" (Error for Gauss-Markov and sinusoid, which the fit does not model).
+std::string_view term_symbol(NoiseTerm term);
+/// Parses "N,B,K" (symbols Q N B K R, case-sensitive, any order, no repeats) for --terms.
+/// Throws Error naming the text and the bad item.
+std::vector<NoiseTerm> parse_fit_terms(std::string_view text);
+
+enum class FitMethod { joint, slopes, both };
+/// "joint" | "slopes" | "both"; throws Error otherwise.
+FitMethod parse_fit_method(std::string_view text);
+std::string_view to_string(FitMethod method);
+
+/// What the fit needs to know about the log the curve came from.
+struct CurveSource {
+  double tau0_s = 0;                ///< sample interval [s]
+  std::int64_t n_phase_points = 0;  ///< N (rate samples + 1)
+  /// Taps of the Kasdin flicker filter when the log is a sigmatau simulation (0: a real
+  /// sensor, modelled by the untruncated 1/f process). Only the model mean uses it.
+  std::int64_t flicker_taps = 0;
+};
+
+struct FitOptions {
+  FitMethod method = FitMethod::joint;
+  /// Forced model (--terms); empty: the model is selected by BIC among all subsets of
+  /// `candidates`.
+  std::vector<NoiseTerm> terms;
+  /// Terms model selection may use (default all five of kFitTerms).
+  std::vector<NoiseTerm> candidates{kFitTerms.begin(), kFitTerms.end()};
+  double confidence_level = 0.95;  ///< two-sided level of the intervals, in (0, 1)
+};
+
+/// One parameter of one channel, in SI (units: noise_model.hpp).
+struct ParameterEstimate {
+  NoiseTerm term = NoiseTerm::white;
+  /// true: in the model, value and interval are set; false: not supported by the data, only
+  /// `upper_bound` is set.
+  bool in_model = false;
+  double value = 0;
+  double ci_low = 0;
+  double ci_high = 0;
+  /// One-sided upper bound at the confidence level (also set, = ci_high, for model terms).
+  double upper_bound = 0;
+  /// B only: tau of the ADEV minimum [s] (NaN for the other terms).
+  double tau_min_s = 0;
+  /// Effective degrees of freedom of the estimate (joint fit: Satterthwaite, 2 theta^2 /
+  /// var(theta); slopes: sum of the EDFs of the points on the line). NaN when not applicable.
+  double edf = 0;
+};
+
+/// The result of one method on one channel.
+struct ChannelFit {
+  FitMethod method = FitMethod::joint;    ///< joint or slopes
+  std::vector<NoiseTerm> model_terms;     ///< in kFitTerms order
+  std::vector<ParameterEstimate> parameters;  ///< one per candidate term, kFitTerms order
+  /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
+  /// weight loop. Slopes: NaN, NaN, 0.
+  double chi_squared = 0;
+  double bic = 0;
+  int iterations = 0;
+  int points = 0;  ///< AVAR points used
+
+  /// The parameter of `term` (Error if absent from `parameters`).
+  const ParameterEstimate& parameter(NoiseTerm term) const;
+  /// The model as NoiseTerms (terms in the model only).
+  NoiseTerms noise_terms() const;
+};
+
+struct NoiseFit {
+  std::optional<ChannelFit> joint;
+  std::optional<ChannelFit> slopes;
+};
+
+/// Fits one channel's OADEV curve (statistic oadev; deviations in SI). Points with a
+/// non-finite or non-positive deviation are ignored.
+/// Throws Error when the statistic is not oadev, fewer than kMinFitPoints usable points
+/// remain (or fewer than the forced model's terms + 1), the source is invalid (tau0 not > 0,
+/// N < 3), a point's m does not match its tau, or the confidence level is not in (0, 1).
+NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const FitOptions& options);
+
+/// Fewest usable AVAR points a fit accepts.
+inline constexpr int kMinFitPoints = 4;
+
+/// Exact covariance of the overlapping AVAR estimates at averaging factors `m` for a Gaussian
+/// process with the given terms sampled at tau0 (N phase points), in (rate unit)^4:
+/// Cov(s2_a, s2_b) = (1 / (4 n_a n_b)) sum_{k,l} [2 c_ab(l-k)^2 + 4 mu_a mu_b c_ab(l-k)],
+/// c_ab the covariance of the second differences (from the terms' PSDs by FFT), mu the ramp's
+/// mean difference, n = N - 2m. Q, N, B (untruncated 1/f), K, R, Gauss-Markov are modelled;
+/// a sinusoid is ignored. Throws Error when an m is < 1 or N - 2m < 1.
+Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::int64_t> m,
+                                 std::int64_t n_phase_points, double tau0_s);
+
+/// Per-sensor summary of a triad's channels: mean and worst (largest) value of each parameter
+/// over the channels that have it in their model.
+struct TriadSummary {
+  Sensor sensor = Sensor::gyro;
+  std::vector<std::string> channels;
+  struct Entry {
+    NoiseTerm term;
+    int channels_in_model = 0;
+    double mean = 0;
+    double worst = 0;
+    std::string worst_channel;
+  };
+  std::vector<Entry> entries;  ///< kFitTerms order, terms in no channel's model left out
+};
+/// `fits[i]` belongs to channel `names[i]` of `sensors[i]`; one summary per sensor with >= 2
+/// channels.
+std::vector<TriadSummary> summarise_triads(const std::vector<std::string>& names,
+                                           const std::vector<Sensor>& sensors,
+                                           const std::vector<const ChannelFit*>& fits);
+
+/// One channel of a saved `sigmatau adev --format json` result, converted to SI.
+struct SavedCurve {
+  std::string channel;
+  AllanCurve curve;        ///< oadev, deviations in SI
+  CurveSource source;
+  std::optional<Sensor> sensor;  ///< from the unit's dimension, when the result has a unit
+};
+/// Whether `text` (the start of a file is enough) looks like JSON rather than a log.
+bool looks_like_json(std::string_view text);
+/// Reads a saved adev JSON result: every "oadev" result (others are skipped). Deviations are
+/// converted to SI with the result's unit (empty unit: taken as SI).
+/// Throws Error naming `file` and the missing or malformed field, or when it holds no oadev
+/// result ("rerun adev with --stat oadev").
+std::vector<SavedCurve> read_adev_json(std::string_view text, const std::string& file);
+
+}  // namespace sigmatau

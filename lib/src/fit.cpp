@@ -1,0 +1,287 @@
+// Noise fit: input checks, method dispatch, triad summaries and saved adev results.
+// The numerics live in fit_joint.cpp (joint fit, selection), fit_slopes.cpp (read-outs) and
+// fit_covariance.cpp (covariance of the OAVAR estimates).
+#include "sigmatau/fit.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fit_internal.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/units.hpp"
+
+namespace sigmatau {
+namespace detail {
+
+int term_index(NoiseTerm term) {
+  for (std::size_t k = 0; k < kFitTerms.size(); ++k) {
+    if (kFitTerms[k] == term) return static_cast<int>(k);
+  }
+  throw Error(std::string(to_string(term)) + " is not a term the fit models (Q, N, B, K, R)");
+}
+
+}  // namespace detail
+
+std::string_view term_symbol(NoiseTerm term) {
+  static constexpr std::string_view kSymbols[] = {"Q", "N", "B", "K", "R"};
+  return kSymbols[detail::term_index(term)];
+}
+
+std::vector<NoiseTerm> parse_fit_terms(std::string_view text) {
+  std::vector<NoiseTerm> terms;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    std::string_view item = text.substr(start, end - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    const auto it = std::find_if(kFitTerms.begin(), kFitTerms.end(),
+                                 [&](NoiseTerm t) { return term_symbol(t) == item; });
+    if (it == kFitTerms.end()) {
+      throw Error("--terms \"" + std::string(text) + "\": unknown term \"" + std::string(item) +
+                  "\" (expected a comma-separated list of Q, N, B, K, R)");
+    }
+    if (std::find(terms.begin(), terms.end(), *it) != terms.end()) {
+      throw Error("--terms \"" + std::string(text) + "\": " + std::string(item) + " is repeated");
+    }
+    terms.push_back(*it);
+    start = end + 1;
+  }
+  std::sort(terms.begin(), terms.end(),
+            [](NoiseTerm a, NoiseTerm b) { return detail::term_index(a) < detail::term_index(b); });
+  return terms;
+}
+
+FitMethod parse_fit_method(std::string_view text) {
+  if (text == "joint") return FitMethod::joint;
+  if (text == "slopes") return FitMethod::slopes;
+  if (text == "both") return FitMethod::both;
+  throw Error("--method must be joint, slopes or both, got \"" + std::string(text) + "\"");
+}
+
+std::string_view to_string(FitMethod method) {
+  switch (method) {
+    case FitMethod::joint: return "joint";
+    case FitMethod::slopes: return "slopes";
+    case FitMethod::both: return "both";
+  }
+  return "?";
+}
+
+const ParameterEstimate& ChannelFit::parameter(NoiseTerm term) const {
+  for (const auto& p : parameters) {
+    if (p.term == term) return p;
+  }
+  throw Error("fit has no parameter " + std::string(to_string(term)));
+}
+
+NoiseTerms ChannelFit::noise_terms() const {
+  NoiseTerms t;
+  for (const auto& p : parameters) {
+    if (!p.in_model) continue;
+    switch (p.term) {
+      case NoiseTerm::quantization: t.quantization = p.value; break;
+      case NoiseTerm::white: t.white = p.value; break;
+      case NoiseTerm::bias_instability: t.bias_instability = p.value; break;
+      case NoiseTerm::rate_random_walk: t.rate_random_walk = p.value; break;
+      case NoiseTerm::rate_ramp: t.rate_ramp = p.value; break;
+      default: break;
+    }
+  }
+  return t;
+}
+
+NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const FitOptions& options) {
+  if (curve.statistic != Statistic::oadev) {
+    throw Error("fit needs an OADEV curve, got " + std::string(to_string(curve.statistic)) +
+                " (rerun adev with --stat oadev)");
+  }
+  if (!(source.tau0_s > 0) || !std::isfinite(source.tau0_s)) {
+    throw Error("fit: sample interval must be > 0 s");
+  }
+  if (!(source.n_phase_points >= 3)) throw Error("fit: the log has fewer than 2 samples");
+  if (!(options.confidence_level > 0 && options.confidence_level < 1)) {
+    throw Error("--ci: confidence level must be in (0, 1), got " +
+                std::to_string(options.confidence_level));
+  }
+  for (const auto t : options.terms) detail::term_index(t);
+  for (const auto t : options.candidates) detail::term_index(t);
+  if (options.terms.empty() && options.candidates.empty()) throw Error("fit: no candidate terms");
+
+  std::vector<detail::AvarPoint> points;
+  for (const auto& p : curve.points) {
+    const double dev = p.value.dev;
+    if (!(dev > 0) || !std::isfinite(dev)) continue;
+    if (!(p.value.m >= 1) || source.n_phase_points - 2 * p.value.m < 1) continue;
+    const double tau = static_cast<double>(p.value.m) * source.tau0_s;
+    if (!(std::abs(p.value.tau_s - tau) <= 1e-6 * tau)) {
+      throw Error("fit: point tau = " + std::to_string(p.value.tau_s) + " s is not m tau0 = " +
+                  std::to_string(tau) + " s (is the sample rate right?)");
+    }
+    detail::AvarPoint q;
+    q.m = p.value.m;
+    q.tau_s = tau;
+    q.dev = dev;
+    q.avar = dev * dev;
+    q.alpha = p.confidence.noise.alpha;
+    q.edf = p.confidence.edf;
+    if (!(q.edf > 0) || !std::isfinite(q.edf)) {
+      // IEEE 952 rule of thumb: relative error 1/sqrt(2 (N/m - 1)), i.e. nu = N/m - 1.
+      q.edf = std::max(1.0, static_cast<double>(source.n_phase_points) / static_cast<double>(q.m) - 1);
+    }
+    points.push_back(q);
+  }
+  const int needed = std::max<int>(kMinFitPoints, static_cast<int>(options.terms.size()) + 1);
+  if (static_cast<int>(points.size()) < needed) {
+    throw Error("fit: " + std::to_string(points.size()) + " usable OADEV points, need at least " +
+                std::to_string(needed) + " (a longer log, or a tau grid with more points)");
+  }
+  std::sort(points.begin(), points.end(),
+            [](const detail::AvarPoint& a, const detail::AvarPoint& b) { return a.m < b.m; });
+  points.erase(std::unique(points.begin(), points.end(),
+                           [](const detail::AvarPoint& a, const detail::AvarPoint& b) { return a.m == b.m; }),
+               points.end());
+
+  NoiseFit fit;
+  if (options.method != FitMethod::slopes) fit.joint = detail::fit_joint(points, source, options);
+  if (options.method != FitMethod::joint) fit.slopes = detail::fit_slopes(points, source, options);
+  // The joint fit reports B with the tau of the curve's minimum too.
+  if (fit.joint) {
+    std::size_t j_min = 0;
+    for (std::size_t j = 1; j < points.size(); ++j) {
+      if (points[j].dev < points[j_min].dev) j_min = j;
+    }
+    for (auto& p : fit.joint->parameters) {
+      if (p.term == NoiseTerm::bias_instability) p.tau_min_s = points[j_min].tau_s;
+    }
+  }
+  return fit;
+}
+
+std::vector<TriadSummary> summarise_triads(const std::vector<std::string>& names,
+                                           const std::vector<Sensor>& sensors,
+                                           const std::vector<const ChannelFit*>& fits) {
+  std::vector<TriadSummary> out;
+  for (const Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+    TriadSummary s;
+    s.sensor = sensor;
+    std::vector<std::size_t> members;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (sensors[i] == sensor && fits[i] != nullptr) members.push_back(i);
+    }
+    if (members.size() < 2) continue;
+    for (const auto i : members) s.channels.push_back(names[i]);
+    for (const NoiseTerm term : kFitTerms) {
+      TriadSummary::Entry e{term, 0, 0, 0, {}};
+      double sum = 0;
+      for (const auto i : members) {
+        const auto& p = fits[i]->parameter(term);
+        if (!p.in_model) continue;
+        ++e.channels_in_model;
+        sum += p.value;
+        if (e.worst_channel.empty() || p.value > e.worst) {
+          e.worst = p.value;
+          e.worst_channel = names[i];
+        }
+      }
+      if (e.channels_in_model == 0) continue;
+      e.mean = sum / e.channels_in_model;
+      s.entries.push_back(e);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+bool looks_like_json(std::string_view text) {
+  for (const char c : text) {
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n') continue;
+    return c == '{';
+  }
+  return false;
+}
+
+std::vector<SavedCurve> read_adev_json(std::string_view text, const std::string& file) {
+  using nlohmann::json;
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw Error(file + ": not valid JSON (" + e.what() + ")");
+  }
+  const auto need = [&](const json& j, const char* key, const std::string& where) -> const json& {
+    if (!j.is_object() || !j.contains(key)) {
+      throw Error(file + ": not a saved `sigmatau adev --format json` result: missing \"" +
+                  std::string(where) + key + "\"");
+    }
+    return j[key];
+  };
+  const json& input = need(doc, "input", "");
+  const json& results = need(doc, "results", "");
+  const json& rate = need(input, "rate_hz", "input.");
+  const json& samples = need(input, "samples", "input.");
+  if (!rate.is_number() || !(rate.get<double>() > 0) || !samples.is_number_integer() ||
+      !results.is_array()) {
+    throw Error(file + ": input.rate_hz must be a number > 0, input.samples an integer and "
+                "results an array");
+  }
+  const std::string kind = input.value("kind", "rate");
+  const DataKind data_kind = parse_data_kind(kind);
+  CurveSource source;
+  source.tau0_s = 1.0 / rate.get<double>();
+  source.n_phase_points = samples.get<std::int64_t>() + (data_kind == DataKind::phase ? 0 : 1);
+
+  std::vector<SavedCurve> out;
+  for (std::size_t r = 0; r < results.size(); ++r) {
+    const json& res = results[r];
+    const std::string where = "results[" + std::to_string(r) + "].";
+    if (need(res, "statistic", where) != "oadev") continue;
+    SavedCurve saved;
+    const json& channel = need(res, "channel", where);
+    if (!channel.is_string()) throw Error(file + ": " + where + "channel must be a string");
+    saved.channel = channel.get<std::string>();
+    saved.source = source;
+    double to_si = 1;
+    const std::string unit = res.value("unit", "");
+    if (!unit.empty()) {
+      const Unit u = parse_unit(unit);
+      to_si = u.factor;
+      if (u.dimension == dim::angular_rate) saved.sensor = Sensor::gyro;
+      if (u.dimension == dim::acceleration) saved.sensor = Sensor::accel;
+    }
+    saved.curve.statistic = Statistic::oadev;
+    saved.curve.confidence_level = res.value("confidence", 0.683);
+    const json& pts = need(res, "points", where);
+    if (!pts.is_array()) throw Error(file + ": " + where + "points must be an array");
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const std::string pw = where + "points[" + std::to_string(i) + "].";
+      const json& p = pts[i];
+      const json& tau = need(p, "tau", pw);
+      const json& m = need(p, "m", pw);
+      const json& dev = need(p, "dev", pw);
+      if (!tau.is_number() || !m.is_number_integer()) {
+        throw Error(file + ": " + pw + "tau and m must be numbers");
+      }
+      CurvePoint cp;
+      cp.value.tau_s = tau.get<double>();
+      cp.value.m = m.get<std::int64_t>();
+      cp.value.n_terms = p.value("n", std::int64_t{0});
+      cp.value.dev = dev.is_number() ? dev.get<double>() * to_si
+                                     : std::numeric_limits<double>::quiet_NaN();
+      cp.confidence.noise.alpha = p.value("alpha", 0);
+      const json edf = p.value("edf", json());
+      cp.confidence.edf = edf.is_number() ? edf.get<double>() : std::numeric_limits<double>::quiet_NaN();
+      saved.curve.points.push_back(cp);
+    }
+    out.push_back(std::move(saved));
+  }
+  if (out.empty()) {
+    throw Error(file + ": the saved adev result has no oadev curve (rerun adev with --stat oadev)");
+  }
+  return out;
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,37 @@
+# CLI regression cases for `sigmatau fit` (see sigmatau_cli_test in tests/CMakeLists.txt).
+set(example ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz)
+set(fit_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_fit)
+file(MAKE_DIRECTORY ${fit_dir})
+
+# The example is N = 0.3 deg/sqrt(h), K = 30 deg/h/sqrt(h) per axis (examples/make_gyro_static.py).
+sigmatau_cli_test(NAME cli_fit_table EXIT 0
+  STDOUT "gx  joint  model N,K.*angle random walk.*deg/sqrt\\(h\\).*gyro triad"
+  ARGS fit ${example} --time-column t --unit deg/s)
+sigmatau_cli_test(NAME cli_fit_json EXIT 0
+  STDOUT "\"quantity\": \"angular_rate\".*\"unit\": \"rad/s/sqrt\\(Hz\\)\".*\"upper_bound\""
+  ARGS fit ${example} --time-column t --unit deg/s --columns gx --format json --method both)
+sigmatau_cli_test(NAME cli_fit_forced_terms EXIT 0
+  STDOUT "\"model_terms\": .[^A-Z]*\"N\",[^A-Z]*\"B\",[^A-Z]*\"K\""
+  ARGS fit ${example} --time-column t --unit deg/s --columns gx --format json --terms N,B,K)
+
+# From a saved adev result, detected by content.
+add_test(NAME cli_fit_adev_json_fresh COMMAND ${CMAKE_COMMAND} -E rm -f ${fit_dir}/adev.json)
+sigmatau_cli_test(NAME cli_fit_adev_json_make EXIT 0
+  ARGS adev ${example} --time-column t --unit deg/s --columns gx,gy --format json -o ${fit_dir}/adev.json)
+set_tests_properties(cli_fit_adev_json_make PROPERTIES DEPENDS cli_fit_adev_json_fresh)
+sigmatau_cli_test(NAME cli_fit_from_adev_json EXIT 0
+  STDOUT "gx  joint  model .*gy  joint  model "
+  ARGS fit ${fit_dir}/adev.json)
+set_tests_properties(cli_fit_from_adev_json PROPERTIES DEPENDS cli_fit_adev_json_make)
+
+sigmatau_cli_test(NAME cli_fit_wrong_json EXIT 2 STDERR "wrong_shape.json: not a saved .*missing \"input\""
+  ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/fit/wrong_shape.json)
+sigmatau_cli_test(NAME cli_fit_bad_terms EXIT 2 STDERR "--terms \"N,X\": unknown term \"X\""
+  ARGS fit ${example} --time-column t --terms N,X)
+sigmatau_cli_test(NAME cli_fit_bad_method EXIT 2 STDERR "--method"
+  ARGS fit ${example} --time-column t --method best)
+sigmatau_cli_test(NAME cli_fit_too_short EXIT 2 STDERR "usable OADEV points, need at least"
+  ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/fit/short.csv --time-column t)
+sigmatau_cli_test(NAME cli_fit_unknown_sensor EXIT 2 STDERR "gyro or an accelerometer"
+  NO_FILE ${fit_dir}/unknown.json
+  ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --columns t --rate 10 -o ${fit_dir}/unknown.json)

@@ -1,0 +1,288 @@
+// Noise fit: exact OAVAR covariance, joint fit on exact curves and on seeded simulations,
+// model selection, forced models, slope read-outs and bad inputs.
+#include "sigmatau/fit.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sigmatau/allan_curve.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/simulate.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace sigmatau;
+
+constexpr double kTau0 = 0.01;  // 100 Hz
+/// 2^16 samples (11 min at 100 Hz): small enough that the covariance basis builds in well under
+/// a second, long enough for 15 octave points.
+constexpr std::int64_t kSamples = std::int64_t{1} << 16;
+
+/// An exact theoretical OADEV curve (sampled_avar) at the octave factors of a log of kSamples.
+AllanCurve exact_curve(const NoiseTerms& truth, std::int64_t flicker_taps = 0) {
+  AllanCurve curve;
+  curve.statistic = Statistic::oadev;
+  const std::int64_t n = kSamples + 1;
+  for (const auto m : averaging_factors(TauSpec{}, Statistic::oadev, n, kTau0)) {
+    CurvePoint p;
+    p.value.m = m;
+    p.value.tau_s = static_cast<double>(m) * kTau0;
+    p.value.dev = std::sqrt(sampled_avar(truth, m, Sampling{kTau0, flicker_taps, false}));
+    p.confidence.edf = static_cast<double>(n) / static_cast<double>(m);
+    curve.points.push_back(p);
+  }
+  return curve;
+}
+
+/// Rate samples of one axis of a simulated gyro.
+std::vector<double> simulate_axis(const NoiseTerms& truth, std::uint64_t seed,
+                                  std::int64_t samples = kSamples) {
+  SimulationConfig c;
+  c.rate_hz = 1 / kTau0;
+  c.samples = samples;
+  c.seed = seed;
+  ErrorModel m;
+  m.noise = {truth, truth, truth};
+  c.gyro = m;
+  Simulator sim(c);
+  std::vector<double> block(static_cast<std::size_t>(samples * 3));
+  sim.next(block, samples);
+  std::vector<double> x(static_cast<std::size_t>(samples));
+  for (std::int64_t i = 0; i < samples; ++i) x[static_cast<std::size_t>(i)] = block[static_cast<std::size_t>(3 * i)];
+  return x;
+}
+
+NoiseTerms nbk() {
+  // MEMS-like, scaled so that N, B and K each dominate part of an 11-minute curve.
+  NoiseTerms t;
+  t.white = 4e-4;
+  t.bias_instability = 3e-4;
+  t.rate_random_walk = 1e-4;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("white noise OAVAR covariance at m = 1 matches the closed form sigma^4 (3n - 1) / n^2") {
+  // d_k = y_{k+1} - y_k has c(0) = 2 s2, c(+-1) = -s2 (s2 = N^2 / tau0 per sample), so
+  // Var = (1 / (2 n^2)) [n 4 s2^2 + 2 (n - 1) s2^2] = s2^2 (3n - 1) / n^2 with n = N - 2.
+  NoiseTerms t;
+  t.white = 2e-3;
+  const std::int64_t n_phase = 1001;
+  const std::vector<std::int64_t> m{1};
+  const Eigen::MatrixXd cov = oavar_covariance(t, m, n_phase, kTau0);
+  const double s2 = 2e-3 * 2e-3 / kTau0;
+  const double n = n_phase - 2;
+  // 1e-10: the FFT evaluates a trigonometric polynomial exactly up to rounding.
+  SIGMATAU_CHECK_REL(cov(0, 0), s2 * s2 * (3 * n - 1) / (n * n), 1e-10);
+}
+
+TEST_CASE("OAVAR covariance across taus agrees with a Monte Carlo of the simulator") {
+  NoiseTerms t = nbk();
+  const std::int64_t samples = 4096;
+  const std::vector<std::int64_t> m{1, 8, 64, 512};
+  const Eigen::MatrixXd cov = oavar_covariance(t, m, samples + 1, kTau0);
+  constexpr int kRuns = 400;
+  std::vector<Eigen::VectorXd> v;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(4);
+  for (int r = 0; r < kRuns; ++r) {
+    const auto x = simulate_axis(t, 1000 + static_cast<std::uint64_t>(r), samples);
+    const auto pts = compute_deviation(PhaseSeries::from_rate(x, kTau0), Statistic::oadev, m);
+    Eigen::VectorXd e(4);
+    for (int j = 0; j < 4; ++j) e(j) = pts[static_cast<std::size_t>(j)].dev * pts[static_cast<std::size_t>(j)].dev;
+    mean += e / kRuns;
+    v.push_back(e);
+  }
+  Eigen::MatrixXd sample = Eigen::MatrixXd::Zero(4, 4);
+  for (const auto& e : v) sample += (e - mean) * (e - mean).transpose() / (kRuns - 1);
+  for (int a = 0; a < 4; ++a) {
+    // Relative standard error of a sample variance from R runs is sqrt(2 / (R - 1)) = 7 % for
+    // Gaussian estimates; the few-EDF points are chi-squared-like (kurtosis up to ~3x), so
+    // 25 % is about 3.5 standard errors.
+    SIGMATAU_CHECK_REL(sample(a, a), cov(a, a), 0.25);
+    for (int b = a + 1; b < 4; ++b) {
+      const double model_corr = cov(a, b) / std::sqrt(cov(a, a) * cov(b, b));
+      const double sample_corr = sample(a, b) / std::sqrt(sample(a, a) * sample(b, b));
+      INFO("pair " << a << "," << b << " model " << model_corr << " sample " << sample_corr);
+      // Standard error of a sample correlation ~ (1 - r^2) / sqrt(R) <= 0.05; 0.15 is 3 of them.
+      CHECK(std::abs(model_corr - sample_corr) < 0.15);
+    }
+  }
+}
+
+TEST_CASE("fitting an exact theoretical curve returns its parameters to 1e-6") {
+  const CurveSource source{kTau0, kSamples + 1, 0};
+  SUBCASE("N, B, K selected by BIC") {
+    const NoiseFit f = fit_noise(exact_curve(nbk()), source, FitOptions{});
+    REQUIRE(f.joint);
+    CHECK(f.joint->model_terms == std::vector<NoiseTerm>{NoiseTerm::white, NoiseTerm::bias_instability,
+                                                         NoiseTerm::rate_random_walk});
+    // 1e-6: the residual of an exact curve is zero, so only rounding in the solve remains.
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::white).value, *nbk().white, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::bias_instability).value, *nbk().bias_instability, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::rate_random_walk).value, *nbk().rate_random_walk, 1e-6);
+  }
+  SUBCASE("all five terms forced") {
+    NoiseTerms t = nbk();
+    t.quantization = 3e-6;
+    t.rate_ramp = 2e-6;
+    FitOptions o;
+    o.terms = parse_fit_terms("Q,N,B,K,R");
+    const NoiseFit f = fit_noise(exact_curve(t), source, o);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::quantization).value, *t.quantization, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::white).value, *t.white, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::bias_instability).value, *t.bias_instability, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::rate_random_walk).value, *t.rate_random_walk, 1e-6);
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::rate_ramp).value, *t.rate_ramp, 1e-6);
+  }
+}
+
+TEST_CASE("the joint fit's intervals on a seeded simulation contain the truth") {
+  // 99.9 % intervals: each misses the truth with probability 1e-3 if they are right, so three
+  // parameters on two seeds fail by chance with probability < 0.6 %; the seeds are fixed.
+  const NoiseTerms t = nbk();
+  FitOptions o;
+  o.confidence_level = 0.999;
+  o.terms = parse_fit_terms("N,B,K");
+  o.method = FitMethod::both;
+  for (const std::uint64_t seed : {11u, 12u}) {
+    const auto x = simulate_axis(t, seed);
+    const auto series = PhaseSeries::from_rate(x, kTau0);
+    const auto curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
+    const NoiseFit f = fit_noise(curve, CurveSource{kTau0, series.size(), 0}, o);
+    for (const NoiseTerm term : {NoiseTerm::white, NoiseTerm::bias_instability, NoiseTerm::rate_random_walk}) {
+      const auto& p = f.joint->parameter(term);
+      const double truth = term == NoiseTerm::white ? *t.white
+                           : term == NoiseTerm::bias_instability ? *t.bias_instability
+                                                                 : *t.rate_random_walk;
+      INFO("seed " << seed << " " << term_symbol(term) << ": " << p.ci_low << " <= " << truth
+                   << " <= " << p.ci_high << " (value " << p.value << ")");
+      CHECK(p.ci_low <= truth);
+      CHECK(truth <= p.ci_high);
+    }
+    REQUIRE(f.slopes);
+    CHECK(f.slopes->parameter(NoiseTerm::white).in_model);
+  }
+}
+
+TEST_CASE("model selection keeps only the terms a clear case supports") {
+  SUBCASE("white noise only: N, with Q, B, K, R as upper bounds") {
+    NoiseTerms t;
+    t.white = 1e-3;
+    const auto x = simulate_axis(t, 5);
+    const auto series = PhaseSeries::from_rate(x, kTau0);
+    const auto curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
+    const NoiseFit f = fit_noise(curve, CurveSource{kTau0, series.size(), 0}, FitOptions{});
+    CHECK(f.joint->model_terms == std::vector<NoiseTerm>{NoiseTerm::white});
+    for (const auto& p : f.joint->parameters) {
+      if (p.term == NoiseTerm::white) continue;
+      CHECK_FALSE(p.in_model);
+      CHECK(p.upper_bound > 0);
+      CHECK(std::isfinite(p.upper_bound));
+    }
+    // A white-noise B below its bound: the bound is at least the ADEV floor of what was seen.
+    CHECK(f.joint->parameter(NoiseTerm::bias_instability).upper_bound > 0);
+  }
+  SUBCASE("white noise and a strong random walk: N and K") {
+    NoiseTerms t;
+    t.white = 1e-3;
+    t.rate_random_walk = 1e-3;
+    const auto x = simulate_axis(t, 6);
+    const auto series = PhaseSeries::from_rate(x, kTau0);
+    const auto curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
+    const NoiseFit f = fit_noise(curve, CurveSource{kTau0, series.size(), 0}, FitOptions{});
+    CHECK(f.joint->model_terms ==
+          std::vector<NoiseTerm>{NoiseTerm::white, NoiseTerm::rate_random_walk});
+  }
+}
+
+TEST_CASE("--terms forces the model even where the data do not support a term") {
+  NoiseTerms t;
+  t.white = 1e-3;
+  FitOptions o;
+  o.terms = parse_fit_terms("K,N,B");  // any order; reported in Q N B K R order
+  const NoiseFit f = fit_noise(exact_curve(t), CurveSource{kTau0, kSamples + 1, 0}, o);
+  CHECK(f.joint->model_terms == std::vector<NoiseTerm>{NoiseTerm::white, NoiseTerm::bias_instability,
+                                                       NoiseTerm::rate_random_walk});
+  SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::white).value, 1e-3, 1e-6);
+  // Absent from the truth: fitted as 0 (non-negative), bounded above.
+  CHECK(f.joint->parameter(NoiseTerm::rate_random_walk).value == 0);
+  CHECK(f.joint->parameter(NoiseTerm::rate_random_walk).ci_high > 0);
+}
+
+TEST_CASE("slope read-outs of an exact white + random-walk curve") {
+  NoiseTerms t;
+  t.white = 1e-3;
+  t.rate_random_walk = 1e-3;
+  AllanCurve curve = exact_curve(t);
+  // Identified noise as a clean curve would be: white below the crossing, random walk above.
+  const double crossing = 3 * 1e-3 * 1e-3 / (1e-3 * 1e-3);  // N^2/tau = K^2 tau/3 at tau = 3 s
+  for (auto& p : curve.points) p.confidence.noise.alpha = p.value.tau_s < crossing / 8 ? 0 : (p.value.tau_s > crossing * 8 ? -2 : -1);
+  FitOptions o;
+  o.method = FitMethod::slopes;
+  const NoiseFit f = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
+  REQUIRE(f.slopes);
+  // Far from the crossing the other term adds < 1/8 of the variance: N within 7 % (sqrt(1+1/8)),
+  // K within 7 % too (and the discrete K^2 tau0^2/(6 tau) correction is negligible there).
+  SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::white).value, 1e-3, 0.07);
+  SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::rate_random_walk).value, 1e-3, 0.07);
+  CHECK_FALSE(f.slopes->parameter(NoiseTerm::quantization).in_model);
+}
+
+TEST_CASE("bad inputs are clear errors") {
+  const CurveSource source{kTau0, kSamples + 1, 0};
+  SUBCASE("too few taus") {
+    AllanCurve c = exact_curve(nbk());
+    c.points.resize(3);
+    CHECK_THROWS_WITH_AS(fit_noise(c, source, FitOptions{}), doctest::Contains("need at least"), Error);
+  }
+  SUBCASE("all NaN") {
+    AllanCurve c = exact_curve(nbk());
+    for (auto& p : c.points) p.value.dev = std::nan("");
+    CHECK_THROWS_WITH_AS(fit_noise(c, source, FitOptions{}), doctest::Contains("0 usable"), Error);
+  }
+  SUBCASE("not an OADEV curve") {
+    AllanCurve c = exact_curve(nbk());
+    c.statistic = Statistic::mdev;
+    CHECK_THROWS_WITH_AS(fit_noise(c, source, FitOptions{}), doctest::Contains("oadev"), Error);
+  }
+  SUBCASE("tau does not match the sample rate") {
+    CHECK_THROWS_WITH_AS(fit_noise(exact_curve(nbk()), CurveSource{0.02, kSamples + 1, 0}, FitOptions{}),
+                         doctest::Contains("sample rate"), Error);
+  }
+  SUBCASE("bad --terms, --method, --ci") {
+    CHECK_THROWS_WITH_AS(parse_fit_terms("N,X"), doctest::Contains("\"X\""), Error);
+    CHECK_THROWS_WITH_AS(parse_fit_terms("N,N"), doctest::Contains("repeated"), Error);
+    CHECK_THROWS_AS(parse_fit_method("best"), Error);
+    FitOptions o;
+    o.confidence_level = std::nan("");
+    CHECK_THROWS_WITH_AS(fit_noise(exact_curve(nbk()), source, o), doctest::Contains("--ci"), Error);
+  }
+  SUBCASE("a JSON of the wrong shape") {
+    CHECK_THROWS_WITH_AS(read_adev_json(R"({"channels": []})", "x.json"),
+                         doctest::Contains("x.json: not a saved"), Error);
+    CHECK_THROWS_WITH_AS(read_adev_json("{\"input\":", "x.json"), doctest::Contains("not valid JSON"), Error);
+    CHECK_THROWS_WITH_AS(
+        read_adev_json(R"({"input":{"rate_hz":100,"samples":1000},"results":[{"statistic":"mdev"}]})", "x.json"),
+        doctest::Contains("no oadev"), Error);
+    CHECK_THROWS_WITH_AS(
+        read_adev_json(R"({"input":{"rate_hz":100,"samples":1000},"results":[{"statistic":"oadev","channel":"gx","points":[{"tau":0.01}]}]})",
+                       "x.json"),
+        doctest::Contains("results[0].points[0].m"), Error);
+  }
+}
+
+TEST_CASE("a saved adev result is read back in SI") {
+  const auto saved = read_adev_json(
+      R"({"input":{"rate_hz":100,"samples":1000,"kind":"rate"},"results":[{"channel":"gx","statistic":"oadev","unit":"deg/s","points":[{"tau":0.01,"m":1,"n":999,"dev":1.0,"edf":600,"alpha":0}]}]})",
+      "x.json");
+  REQUIRE(saved.size() == 1);
+  CHECK(saved[0].sensor == Sensor::gyro);
+  CHECK(saved[0].source.n_phase_points == 1001);
+  // deg/s -> rad/s is pi/180 exactly as units.hpp defines it.
+  SIGMATAU_CHECK_REL(saved[0].curve.points[0].value.dev, 3.14159265358979323846 / 180, 1e-15);
+}
