@@ -58,6 +58,14 @@ std::string fmt(double v, int digits = 4) {
   return b;
 }
 
+/// "bias_instability" -> "bias instability" for people.
+std::string spaced(std::string s) {
+  for (char& c : s) {
+    if (c == '_') c = ' ';
+  }
+  return s;
+}
+
 std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -95,8 +103,8 @@ const json* find_fit(const json& results, const std::string& channel) {
 std::string parameter_text(const json& p, const std::string& unit) {
   if (p.contains("value")) {
     return fmt(in_unit(p["value"].get<double>(), unit)) + " [" +
-           fmt(in_unit(p["ci_low"].get<double>(), unit), 3) + ", " +
-           fmt(in_unit(p["ci_high"].get<double>(), unit), 3) + "] " + unit;
+           fmt(in_unit(p["ci_low"].get<double>(), unit)) + ", " +
+           fmt(in_unit(p["ci_high"].get<double>(), unit)) + "] " + unit;
   }
   if (p.contains("upper_bound")) return "< " + fmt(in_unit(p["upper_bound"].get<double>(), unit), 3) + " " + unit;
   return "";
@@ -241,7 +249,7 @@ CompliancePlot compliance_plot(const json& results) {
     const std::string verdict = item.value("verdict", "");
     if (verdict == "not specified") continue;
     ComplianceRow row;
-    row.label = item.value("sensor", "") + " " + item.value("quantity", "") + " " + item.value("axis", "");
+    row.label = item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", "");
     row.ratio = item["margin"].get<double>();
     row.ratio_high = item["margin_upper"].get<double>();
     const double value = item["value"].get<double>();
@@ -356,7 +364,7 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
     for (const auto& item : results["compliance"]["items"]) {
-      md << "| " << item.value("sensor", "") << " " << item.value("quantity", "") << " "
+      md << "| " << item.value("sensor", "") << " " << spaced(item.value("quantity", "")) << " "
          << item.value("axis", "") << " | " << item.value("verdict", "") << " | "
          << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << " | "
          << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << " | "
@@ -423,7 +431,7 @@ std::string report_html(const json& results, const PlotSet& plots,
     for (const auto& item : results["compliance"]["items"]) {
       const std::string verdict = item.value("verdict", "");
       h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
-        << html_escape(item.value("sensor", "") + " " + item.value("quantity", "") + " " + item.value("axis", ""))
+        << html_escape(item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", ""))
         << "</td><td>" << html_escape(verdict) << "</td><td>"
         << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << "</td><td>"
         << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << "</td><td>"
