@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs, with apt, the Debian 12 packages sigmatau needs to build, test and plot; skips what is
-# already there. Run as root (or with sudo available).
+# Installs, with apt, the Debian 12 packages sigmatau needs to build and plot; skips what is
+# already there. With the argument "test" it adds what the test suite needs besides (Chromium,
+# to render the HTML report). Run as root (or with sudo available).
 set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config            # toolchain
@@ -15,6 +16,9 @@ packages=(
   libbenchmark-dev                            # bench/
   gnuplot-nox                                 # plots
 )
+if [[ "${1:-}" == "test" ]]; then
+  packages+=(chromium)                        # the report is checked in a real browser
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
