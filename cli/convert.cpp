@@ -2,6 +2,8 @@
 // rate, exported for a filter project, with the arithmetic on request (--explain).
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 
 #include "sigmatau/convert.hpp"
@@ -18,6 +20,7 @@ namespace {
 
 struct ConvertArguments {
   std::string spec;
+  std::string fit;
   std::string noise_density;
   std::string bias_stability;
   std::string random_walk;
@@ -56,9 +59,10 @@ void run_convert(const ConvertArguments& args) {
   options.convention = parse_density_convention(args.convention);
   const bool typed = !args.noise_density.empty() || !args.bias_stability.empty() ||
                      !args.random_walk.empty();
-  if (args.spec.empty() == !typed) {
-    throw Error("give either --spec FILE|NAME or the terms (--noise-density, --bias-stability, "
-                "--random-walk), not both and not neither");
+  const int sources = (args.spec.empty() ? 0 : 1) + (args.fit.empty() ? 0 : 1) + (typed ? 1 : 0);
+  if (sources != 1) {
+    throw Error("give one of --spec FILE|NAME, --fit RESULT.json, or the terms (--noise-density, "
+                "--bias-stability, --random-walk)");
   }
   std::optional<ExportFormat> format;
   if (!args.to.empty()) format = parse_export_format(args.to);
@@ -69,7 +73,13 @@ void run_convert(const ConvertArguments& args) {
 
   std::vector<TriadNoise> triads;
   std::string source;
-  if (!args.spec.empty()) {
+  if (!args.fit.empty()) {
+    std::ifstream in(args.fit, std::ios::binary);
+    if (!in) throw Error(args.fit + ": cannot open");
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    triads = triads_from_fit_json(text, args.fit);
+    source = "noise-term fit " + args.fit;
+  } else if (!args.spec.empty()) {
     const auto file = find_data_sheet(args.spec, resource_dir("specs"));
     const DataSheet sheet = load_data_sheet(file);
     source = "data sheet " + file.string();
@@ -150,6 +160,8 @@ void add_convert_command(CLI::App& app) {
       "continuous noise (data sheet or typed terms) -> discrete filter covariances at a rate, "
       "exported for kalibr, openvins, vins-fusion, gtsam, px4 or json");
   command->add_option("--spec", args->spec, "data sheet: a YAML file or a name from `specs list`");
+  command->add_option("--fit", args->fit,
+                      "a `sigmatau fit --format json` result or an analyze results.json");
   command->add_option("--noise-density", args->noise_density,
                       "printed noise density ND, e.g. \"0.015 deg/s/sqrt(Hz)\" or \"70 ug/sqrt(Hz)\"");
   command->add_option("--bias-stability", args->bias_stability,

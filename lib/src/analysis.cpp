@@ -301,8 +301,6 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
 
   // Noise-term fit of every sensor channel (joint fit, model chosen by BIC) on the first curve,
   // which must be OADEV for the fit.
-  std::array<std::optional<TriadNoise>, 2> triads;  // gyro, accel
-  std::array<std::array<std::optional<ChannelFit>, 3>, 2> axis_fits;  // [sensor][axis]
   std::vector<MeasuredParameter> measured;
   json fits = json::array();
   const bool first_is_oadev = options.statistics.front() == Statistic::oadev;
@@ -325,15 +323,6 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       const auto& points = curves[c].front().points;
       fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
                               points.back().value.tau_s));
-      const int s = channel.role->sensor == Sensor::gyro ? 0 : 1;
-      if (!triads[s]) {
-        triads[s] = TriadNoise{};
-        triads[s]->sensor = channel.role->sensor;
-        triads[s]->white_origin = "N fitted from the Allan variance (joint fit)";
-        triads[s]->bias_origin = "B / K fitted from the Allan variance (joint fit)";
-      }
-      triads[s]->axes[channel.role->axis] = joint.noise_terms();
-      axis_fits[s][channel.role->axis] = joint;
       const std::string axis(1, static_cast<char>('x' + channel.role->axis));
       const std::pair<NoiseTerm, MeasuredQuantity> kMeasured[] = {
           {NoiseTerm::white, MeasuredQuantity::white_noise},
@@ -351,28 +340,10 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
 
   // Filter covariances and exports at each rate.
   results["filter"] = json::array();
-  // A filter models every axis alike: a bias term kept on some axes only is given, on the
-  // others, the upper bound the fit found for it there (conservative: noise that may be there).
+  // The same conversion as `convert --fit` on this fit (terms kept on some axes only are given
+  // their upper bound on the others: convert.hpp, triads_from_fit_json).
   std::vector<TriadNoise> present;
-  for (int s = 0; s < 2; ++s) {
-    if (!triads[s]) continue;
-    TriadNoise triad = *triads[s];
-    for (NoiseTerm term : {NoiseTerm::bias_instability, NoiseTerm::rate_random_walk}) {
-      bool any = false;
-      for (int a = 0; a < 3; ++a) any = any || (axis_fits[s][a] && axis_fits[s][a]->parameter(term).in_model);
-      if (!any) continue;
-      for (int a = 0; a < 3; ++a) {
-        if (!axis_fits[s][a]) continue;
-        const auto& p = axis_fits[s][a]->parameter(term);
-        if (p.in_model || !(p.upper_bound > 0)) continue;
-        (term == NoiseTerm::bias_instability ? triad.axes[a].bias_instability
-                                             : triad.axes[a].rate_random_walk) = p.upper_bound;
-        triad.bias_origin += std::string("; ") + std::string(term_symbol(term)) + " on axis " +
-                             static_cast<char>('x' + a) + ": not detected, its upper bound used";
-      }
-    }
-    present.push_back(std::move(triad));
-  }
+  if (!fits.empty()) present = triads_from_fit_json(results["fit"].dump(), "the fit above");
   if (!present.empty()) {
     std::vector<double> rates = options.filter_rates_hz;
     if (rates.empty()) rates.push_back(input.rate_hz);

@@ -256,7 +256,9 @@ std::vector<MeasuredParameter> measured_parameters_from_json(std::string_view js
   }
   std::vector<MeasuredParameter> out;
   try {
-    if (doc.contains("channels")) read_fit(doc, file, out);
+    // An analyze results.json has top-level "channels" too (curves, no "parameters"): read_fit
+    // skips channels without parameters, so its "fit" section is what counts there.
+    if (doc.contains("channels") && !doc.contains("fit")) read_fit(doc, file, out);
     if (doc.contains("accelerometer") || doc.contains("gyroscope")) read_calibration(doc, file, out);
     if (doc.contains("fit") && doc["fit"].contains("channels")) read_fit(doc["fit"], file, out);
     if (doc.contains("calibration")) read_calibration(doc["calibration"], file, out);

@@ -93,6 +93,17 @@ TriadNoise uniform_triad(Sensor sensor, const NoiseTerms& terms);
 TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                                  DensityConvention convention);
 
+/// The triads of a noise-term fit result: the JSON of `sigmatau fit --format json` or the "fit"
+/// section of `analyze`'s results.json ({"channels":[{"name","quantity","parameters":{"N":
+/// {"value",..} | {"upper_bound",..}, "B": ..., "K": ...}}]}). Channels gx/gy/gz and ax/ay/az
+/// (or quantity angular_rate / specific_force and a trailing x/y/z) give sensor and axis.
+/// A filter models every axis alike, so a bias term (B or K) that the fit kept on some axes
+/// only is given, on the others, the upper bound the fit found for it there (conservative),
+/// and the explanation says so. Axes with no channel in the result (a single-axis test) get the
+/// largest measured axis's terms. Throws Error naming `file` on another shape or a channel whose
+/// axis cannot be told.
+std::vector<TriadNoise> triads_from_fit_json(std::string_view json_text, const std::string& file);
+
 /// Conversion settings.
 struct ConvertOptions {
   double rate_hz = 0;  ///< f_s [Hz], > 0
