@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   sigmatau::cli::add_demo_command(app);
   sigmatau::cli::add_specs_command(app);
   sigmatau::cli::add_convert_command(app);
+  sigmatau::cli::add_calibrate_command(app);
   sigmatau::cli::add_fit_command(app);
   try {
     app.parse(argc, argv);

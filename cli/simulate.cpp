@@ -29,7 +29,63 @@ struct SimulateArguments {
   std::string gyro_lsb, gyro_full_scale, accel_lsb, accel_full_scale;
   std::int64_t flicker_taps = std::int64_t{1} << 20;
   unsigned threads = 1;
+  int positions = 0;
+  std::string dwell = "20 s", rotation_rate = "90 deg/s";
+  std::string temperature;
+  std::string gyro_scale, accel_scale, gyro_misalignment, accel_misalignment;
+  std::string gyro_temp_coef, accel_temp_coef;
 };
+
+/// "v1, v2, ..." of `count` ratios (%, ppm or plain numbers).
+std::vector<double> ratios(const std::string& text, std::size_t count, const std::string& option) {
+  const auto parts = split_list(text, option);
+  if (parts.size() != count)
+    throw Error(option + " '" + text + "': expected " + std::to_string(count) +
+                " comma-separated values (e.g. 0.1 %, 500 ppm)");
+  std::vector<double> v;
+  for (const auto& p : parts) v.push_back(parse_quantity_as(p, dim::dimensionless, option));
+  return v;
+}
+
+/// "20 degC @ 0 s, 40 degC @ 10 min": temperature points of a piecewise-linear profile.
+TemperatureProfile temperature_profile(const std::string& text) {
+  TemperatureProfile profile;
+  for (const auto& item : split_list(text, "--temperature")) {
+    const auto at = item.find('@');
+    if (at == std::string::npos)
+      throw Error("--temperature '" + item + "': expected TEMPERATURE @ TIME, e.g. \"20 degC @ 0 s\"");
+    const Quantity t = parse_quantity(item.substr(0, at));
+    if (!(t.dimension == dim::temperature))
+      throw Error("--temperature '" + item + "': expected a temperature before '@'");
+    profile.points.push_back(
+        {parse_quantity_as(item.substr(at + 1), dim::time, "--temperature"), t.value_si});
+  }
+  return profile;
+}
+
+void apply_error_model(ErrorModel& m, const std::string& scale, const std::string& misalignment,
+                       const std::string& temp_coef, const Dimension& coef_dim, const char* what) {
+  const std::string w(what);
+  if (!scale.empty()) {
+    const auto v = ratios(scale, 3, "--" + w + "-scale");
+    m.scale_factor = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  if (!misalignment.empty()) {
+    // m_xy, m_xz, m_yx, m_yz, m_zx, m_zy
+    const auto v = ratios(misalignment, 6, "--" + w + "-misalignment");
+    m.misalignment << 0, v[0], v[1], v[2], 0, v[3], v[4], v[5], 0;
+  }
+  if (!temp_coef.empty()) {
+    const auto parts = split_list(temp_coef, "--" + w + "-temp-coef");
+    if (parts.size() != 3)
+      throw Error("--" + w + "-temp-coef: expected three values x,y,z, e.g. \"0.01 deg/s/K\"");
+    Dimension d = coef_dim;
+    d.temperature2 -= 2;
+    for (int i = 0; i < 3; ++i)
+      m.temperature_coefficient[i] =
+          parse_quantity_as(parts[static_cast<std::size_t>(i)], d, "--" + w + "-temp-coef");
+  }
+}
 
 /// A plain number is taken in `default_unit`; otherwise the text is a quantity with its unit.
 double quantity_or_number(const std::string& text, const Dimension& d, const std::string& option,
@@ -54,7 +110,20 @@ void run_simulate(const SimulateArguments& a) {
   SimulationConfig c;
   c.rate_hz = a.rate_hz;
   if (!(a.rate_hz > 0)) throw Error("--rate must be > 0 Hz");
-  const double duration_s = quantity_or_number(a.duration, dim::time, "--duration", "s");
+  StaticPose pose;
+  pose.latitude_rad = parse_quantity_as(a.latitude, dim::angle, "--latitude");
+  if (a.positions > 0) {
+    c.schedule = calibration_schedule(
+        a.positions, quantity_or_number(a.dwell, dim::time, "--dwell", "s"),
+        parse_quantity_as(a.rotation_rate, dim::angular_rate, "--rotation-rate"), pose.latitude_rad);
+  } else if (a.positions < 0) {
+    throw Error("--positions must be >= 1");
+  }
+  if (a.duration.empty() && !c.schedule)
+    throw Error("--duration is required (or --positions, whose schedule sets it)");
+  const double duration_s = a.duration.empty()
+                                ? schedule_duration_s(*c.schedule)
+                                : quantity_or_number(a.duration, dim::time, "--duration", "s");
   if (!(duration_s > 0)) throw Error("--duration must be > 0");
   const double samples = std::floor(duration_s * a.rate_hz + 0.5);
   if (!(samples >= 1) || samples > 9.0e15)
@@ -64,12 +133,11 @@ void run_simulate(const SimulateArguments& a) {
   c.kind = parse_output_kind(a.kind);
   c.flicker_max_taps = a.flicker_taps;
   c.threads = a.threads;
-  StaticPose pose;
   pose.roll_rad = parse_quantity_as(a.roll, dim::angle, "--roll");
   pose.pitch_rad = parse_quantity_as(a.pitch, dim::angle, "--pitch");
   pose.yaw_rad = parse_quantity_as(a.yaw, dim::angle, "--yaw");
-  pose.latitude_rad = parse_quantity_as(a.latitude, dim::angle, "--latitude");
   c.truth = static_truth(pose);
+  if (!a.temperature.empty()) c.temperature_profile = temperature_profile(a.temperature);
   for (const auto& s : split_list(a.sensors, "--sensors")) {
     if (s == "gyro") {
       ErrorModel m;
@@ -78,6 +146,8 @@ void run_simulate(const SimulateArguments& a) {
         m.noise = {t, t, t};
       }
       if (!a.gyro_bias.empty()) m.bias = triple(a.gyro_bias, dim::angular_rate, "--gyro-bias");
+      apply_error_model(m, a.gyro_scale, a.gyro_misalignment, a.gyro_temp_coef, dim::angular_rate,
+                        "gyro");
       c.gyro = m;
     } else if (s == "accel") {
       ErrorModel m;
@@ -86,6 +156,8 @@ void run_simulate(const SimulateArguments& a) {
         m.noise = {t, t, t};
       }
       if (!a.accel_bias.empty()) m.bias = triple(a.accel_bias, dim::acceleration, "--accel-bias");
+      apply_error_model(m, a.accel_scale, a.accel_misalignment, a.accel_temp_coef,
+                        dim::acceleration, "accel");
       c.accel = m;
     } else {
       throw Error("--sensors: unknown sensor '" + s + "'; expected gyro and/or accel");
@@ -131,8 +203,28 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--accel-model", args->accel_model,
                       "accelerometer noise per axis, e.g. \"N=60 ug/sqrt(Hz), B=0.05 mg\"");
   command->add_option("--rate", args->rate_hz, "sample rate [Hz]")->required();
-  command->add_option("--duration", args->duration, "log length, e.g. 2h, \"600 s\" (number: s)")
-      ->required();
+  command->add_option("--duration", args->duration,
+                      "log length, e.g. 2h, \"600 s\" (number: s); default with --positions: the "
+                      "schedule's length");
+  command->add_option("--positions", args->positions,
+                      "multi-position schedule of N well-spread orientations (calibration)");
+  command->add_option("--dwell", args->dwell, "time in each position")->capture_default_str();
+  command->add_option("--rotation-rate", args->rotation_rate, "peak rate of the rotations")
+      ->capture_default_str();
+  command->add_option("--temperature", args->temperature,
+                      "temperature profile, e.g. \"20 degC @ 0 s, 40 degC @ 10 min\" (linear in "
+                      "between; adds a temp column in K)");
+  command->add_option("--gyro-scale", args->gyro_scale, "gyro scale factor errors x,y,z, e.g. "
+                                                        "\"0.2 %,-0.1 %,500 ppm\"");
+  command->add_option("--accel-scale", args->accel_scale, "accelerometer scale factor errors x,y,z");
+  command->add_option("--gyro-misalignment", args->gyro_misalignment,
+                      "gyro cross-axis terms m_xy,m_xz,m_yx,m_yz,m_zx,m_zy");
+  command->add_option("--accel-misalignment", args->accel_misalignment,
+                      "accelerometer cross-axis terms m_xy,m_xz,m_yx,m_yz,m_zx,m_zy");
+  command->add_option("--gyro-temp-coef", args->gyro_temp_coef,
+                      "gyro bias temperature coefficients x,y,z, e.g. \"0.01 deg/s/K\"");
+  command->add_option("--accel-temp-coef", args->accel_temp_coef,
+                      "accelerometer bias temperature coefficients x,y,z, e.g. \"0.2 mg/K\"");
   command->add_option("--seed", args->seed, "random seed")->capture_default_str();
   command->add_option("--sensors", args->sensors, "gyro, accel or gyro,accel")
       ->capture_default_str();

@@ -21,6 +21,7 @@ void add_units_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_specs_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 
 }  // namespace sigmatau::cli

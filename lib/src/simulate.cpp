@@ -14,6 +14,7 @@
 #include "sigmatau/error.hpp"
 #include "simulate_flicker.hpp"
 #include "simulate_random.hpp"
+#include "simulate_schedule.hpp"
 
 namespace sigmatau {
 namespace {
@@ -30,9 +31,14 @@ constexpr std::int64_t kMaxFlickerTaps = std::int64_t{1} << 28;
 bool is_power_of_two(std::int64_t v) { return v > 0 && (v & (v - 1)) == 0; }
 
 struct Channel {
-  int sensor = 0;  // 0 gyro, 1 accel
+  int sensor = 0;  // 0 gyro, 1 accel, 2 temperature
   int axis = 0;
   double constant = 0;  // (I + T) x + b + c (temperature - T0) on this axis [SI rate]
+  // For a time-varying truth or temperature: this axis's row of (I + T), b and c (T0).
+  Eigen::RowVector3d gain = Eigen::RowVector3d::Zero();
+  double bias = 0;
+  double temperature_coefficient = 0;
+  double reference_temperature_k = 0;
   NoiseTerms terms;
   CountsFormat counts;
   std::array<std::uint64_t, kAllNoiseTerms.size()> keys{};
@@ -102,6 +108,20 @@ void validate(const SimulationConfig& c) {
     throw Error("simulation: the true signals must be finite");
   if (!(c.temperature_k > 0) || !std::isfinite(c.temperature_k))
     throw Error("simulation: temperature must be > 0 K");
+  if (c.schedule) (void)detail::ScheduleTruth(*c.schedule);  // validates
+  if (c.temperature_profile) {
+    const auto& p = c.temperature_profile->points;
+    if (p.empty()) throw Error("simulation: the temperature profile has no points");
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!std::isfinite(p[i].t_s) || !(p[i].temperature_k > 0) ||
+          !std::isfinite(p[i].temperature_k))
+        throw Error("simulation: temperature profile point " + std::to_string(i + 1) +
+                    " needs a finite time and a temperature > 0 K");
+      if (i > 0 && !(p[i].t_s >= p[i - 1].t_s))
+        throw Error("simulation: temperature profile times must not decrease (point " +
+                    std::to_string(i + 1) + ")");
+    }
+  }
   if (!is_power_of_two(c.flicker_max_taps) || c.flicker_max_taps < kRandomSubBlock ||
       c.flicker_max_taps > kMaxFlickerTaps)
     throw Error("simulation: flicker_max_taps must be a power of two in [4096, 2^28], got " +
@@ -141,6 +161,13 @@ struct Simulator::Impl {
   std::int64_t position = 0;     // rows handed out
   std::int64_t chunk_start = 0;  // first sample of the current chunk
   std::int64_t chunk_rows = 0;   // rows in the current chunk (0 before the first)
+  // Time-varying truth (schedule) and temperature (profile), per row of the current chunk.
+  std::optional<detail::ScheduleTruth> schedule;
+  bool dynamic = false;
+  std::vector<Eigen::Vector3d> gyro_truth, accel_truth;
+  std::vector<double> temperature;
+
+  void fill_truth();
 
   void generate(Channel& c, detail::FlickerFilter::Workspace* ws, std::int64_t a,
                 std::int64_t n) const;
@@ -150,7 +177,19 @@ struct Simulator::Impl {
 void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws, std::int64_t a,
                                std::int64_t n) const {
   const auto un = static_cast<std::size_t>(n);
-  c.values.assign(un, c.constant);
+  if (c.sensor == 2) {  // temperature channel [K]
+    c.values = temperature;
+    return;
+  }
+  if (dynamic) {
+    c.values.resize(un);
+    const auto& x = c.sensor == 0 ? gyro_truth : accel_truth;
+    for (std::size_t i = 0; i < un; ++i)
+      c.values[i] = c.gain.dot(x[i]) + c.bias +
+                    c.temperature_coefficient * (temperature[i] - c.reference_temperature_k);
+  } else {
+    c.values.assign(un, c.constant);
+  }
   c.scratch.resize(un);
   double* v = c.values.data();
   double* w = c.scratch.data();
@@ -238,9 +277,29 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
   }
 }
 
+void Simulator::Impl::fill_truth() {
+  // Rate and counts: the truth at t_k = k tau0; increment: its mean over [t_k, t_k + tau0].
+  const auto n = static_cast<std::size_t>(chunk_rows);
+  const bool increment = config.kind == OutputKind::increment;
+  gyro_truth.resize(n);
+  accel_truth.resize(n);
+  temperature.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(chunk_start + static_cast<std::int64_t>(i)) * tau0;
+    Truth x = config.truth;
+    if (schedule) x = increment ? schedule->mean(t, t + tau0) : schedule->at(t);
+    gyro_truth[i] = x.angular_rate;
+    accel_truth[i] = x.specific_force;
+    temperature[i] = !config.temperature_profile ? config.temperature_k
+                     : increment ? mean_temperature(*config.temperature_profile, t, t + tau0)
+                                 : temperature_at(*config.temperature_profile, t);
+  }
+}
+
 void Simulator::Impl::refill() {
   chunk_start += chunk_rows;
   chunk_rows = std::min(kChunk, config.samples - chunk_start);
+  if (dynamic) fill_truth();
   const auto count = static_cast<unsigned>(channels.size());
   const unsigned workers = std::max(1u, std::min(threads, count));
   const auto work = [&](unsigned worker) {
@@ -268,11 +327,16 @@ Simulator::Simulator(const SimulationConfig& config) : impl_(std::make_unique<Im
   const auto add = [&](const ErrorModel& model, const Eigen::Vector3d& truth, int sensor,
                        const CountsFormat& counts) {
     const Eigen::Vector3d out = model.deterministic_output(truth, config.temperature_k);
+    const Eigen::Matrix3d gain = Eigen::Matrix3d::Identity() + model.error_matrix();
     for (int axis = 0; axis < 3; ++axis) {
       Channel c;
       c.sensor = sensor;
       c.axis = axis;
       c.constant = out[axis];
+      c.gain = gain.row(axis);
+      c.bias = model.bias[axis];
+      c.temperature_coefficient = model.temperature_coefficient[axis];
+      c.reference_temperature_k = model.reference_temperature_k;
       c.terms = model.noise[static_cast<std::size_t>(axis)];
       c.counts = counts;
       for (NoiseTerm term : kAllNoiseTerms)
@@ -291,6 +355,13 @@ Simulator::Simulator(const SimulationConfig& config) : impl_(std::make_unique<Im
   };
   if (config.gyro) add(*config.gyro, config.truth.angular_rate, 0, config.gyro_counts);
   if (config.accel) add(*config.accel, config.truth.specific_force, 1, config.accel_counts);
+  if (config.schedule) s.schedule.emplace(*config.schedule);
+  s.dynamic = config.schedule.has_value() || config.temperature_profile.has_value();
+  if (config.temperature_profile) {
+    Channel c;
+    c.sensor = 2;
+    s.channels.push_back(std::move(c));
+  }
   if (any_flicker) {
     const std::int64_t taps = flicker_taps(config);
     s.filter = std::make_unique<detail::FlickerFilter>(taps);
@@ -309,7 +380,8 @@ int Simulator::channels() const { return static_cast<int>(impl_->channels.size()
 std::vector<std::string> Simulator::channel_names() const {
   std::vector<std::string> names;
   for (const auto& c : impl_->channels)
-    names.push_back(std::string(c.sensor == 0 ? "g" : "a") + "xyz"[c.axis]);
+    names.push_back(c.sensor == 2 ? std::string("temp")
+                                  : std::string(c.sensor == 0 ? "g" : "a") + "xyz"[c.axis]);
   return names;
 }
 

@@ -129,6 +129,44 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
     j["accel"] = model_json(*c.accel, Sensor::accel, c.truth.specific_force, c.temperature_k);
     for (const char* n : {"ax", "ay", "az"}) columns.emplace_back(n);
   }
+  if (c.temperature_profile) {
+    columns.emplace_back("temp");
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& q : c.temperature_profile->points)
+      points.push_back({{"t_s", q.t_s}, {"temperature_k", q.temperature_k}});
+    j["temperature_profile"] = {{"unit", "K"}, {"interpolation", "linear, constant outside"},
+                                {"points", points}};
+  }
+  if (c.schedule) {
+    // The truth of each static position, its time span and the expected noise-free output at the
+    // profile's temperature at the middle of the dwell.
+    nlohmann::json positions = nlohmann::json::array();
+    for (const auto& seg : schedule_timeline(*c.schedule)) {
+      const double mid = (seg.start_s + seg.end_s) / 2;
+      const Truth x = schedule_truth(*c.schedule, mid);
+      const auto& p = c.schedule->positions[static_cast<std::size_t>(seg.position)];
+      nlohmann::json e{{"start_s", seg.start_s}, {"end_s", seg.end_s},
+                       {"rotating", seg.rotating}, {"position", seg.position}};
+      if (!seg.rotating) {
+        const double temp = c.temperature_profile ? temperature_at(*c.temperature_profile, mid)
+                                                  : c.temperature_k;
+        e["roll_rad"] = p.roll_rad;
+        e["pitch_rad"] = p.pitch_rad;
+        e["yaw_rad"] = p.yaw_rad;
+        e["angular_rate"] = vector_json(x.angular_rate);
+        e["specific_force"] = vector_json(x.specific_force);
+        if (c.gyro) e["gyro_expected_mean"] = vector_json(c.gyro->deterministic_output(x.angular_rate, temp));
+        if (c.accel)
+          e["accel_expected_mean"] = vector_json(c.accel->deterministic_output(x.specific_force, temp));
+      }
+      positions.push_back(e);
+    }
+    j["schedule"] = {{"rotation_rate_rad_s", c.schedule->rotation_rate_rad_s},
+                     {"latitude_rad", c.schedule->latitude_rad},
+                     {"rotation_profile", "cycloidal about the shortest-rotation body axis"},
+                     {"duration_s", schedule_duration_s(*c.schedule)},
+                     {"segments", positions}};
+  }
   j["columns"] = columns;
   if (c.kind == OutputKind::counts) {
     if (c.gyro) j["gyro"]["counts"] = {{"lsb", c.gyro_counts.lsb}, {"full_scale", c.gyro_counts.full_scale}};

@@ -25,6 +25,17 @@
 /// Sample k is at t_k = k tau0 (rate and counts). Increment output: sample k is the integral
 /// over [k tau0, (k+1) tau0]: deterministic parts (truth, bias, ramp, sinusoid) are integrated
 /// exactly, and each noise sample above is taken as the mean rate over its interval.
+///
+/// Multi-position schedules (calibration): the sensor dwells in each orientation, then turns to
+/// the next about the fixed body axis of the shortest rotation, with the cycloidal angle profile
+/// phi(s) = theta (s/D - sin(2 pi s/D)/(2 pi)), D = 2 theta / omega_max: the rate rises smoothly
+/// from 0 to the peak omega_max and back, so point-sampled rates integrate accurately. Truth:
+/// gyro = u phi'(s) + C(s)^T omega_ie (body rate plus Earth rate), accel = C(s)^T (0, 0, -g), with
+/// C(s) = C_k Exp(u phi(s)) the body-to-NED attitude (sensor at the centre of rotation). Increment
+/// output integrates the truth over each sample interval (split at segment boundaries, 8-point
+/// Gauss-Legendre inside a rotation: exact to rounding for the angles per sample of any real
+/// schedule). A temperature profile (piecewise linear in time) drives the bias temperature
+/// coefficients and adds a "temp" channel [K] (increment output: the mean over the interval).
 
 #include <Eigen/Core>
 
@@ -69,6 +80,64 @@ struct Truth {
 /// frame: omega_n = Omega (cos lat, 0, -sin lat), f_n = (0, 0, -g(lat)); level, z down reads -g.
 Truth static_truth(const StaticPose& pose);
 
+/// One static position of a multi-position schedule: attitude as in StaticPose and its dwell.
+struct SchedulePosition {
+  double roll_rad = 0;
+  double pitch_rad = 0;
+  double yaw_rad = 0;
+  double dwell_s = 0;  ///< time spent static in this orientation [s] (>= 0)
+};
+
+/// A multi-position schedule: dwell in positions[0], rotate to positions[1] (cycloidal profile,
+/// peak rate rotation_rate_rad_s, see the file comment), dwell, ... After the last dwell the
+/// sensor stays in the last position.
+struct Schedule {
+  std::vector<SchedulePosition> positions;
+  double rotation_rate_rad_s = 0;  ///< peak rate of each rotation [rad/s] (> 0 for >= 2 positions)
+  double latitude_rad = 0;         ///< latitude [rad] (Earth rate, normal gravity)
+};
+
+/// One segment of a schedule's timeline.
+struct ScheduleSegment {
+  double start_s = 0;
+  double end_s = 0;
+  int position = 0;       ///< static: the position; rotation: the position it leaves
+  bool rotating = false;
+};
+
+/// The timeline of a schedule: dwell 0, rotation 0->1, dwell 1, ... (zero-length rotations
+/// between identical orientations are omitted). Throws Error on a bad schedule.
+std::vector<ScheduleSegment> schedule_timeline(const Schedule& schedule);
+
+/// Duration of the schedule [s] (end of the last dwell).
+double schedule_duration_s(const Schedule& schedule);
+
+/// The true signals at time t [s] (before 0: the first position; after the end: the last).
+Truth schedule_truth(const Schedule& schedule, double t_s);
+
+/// A schedule of `count` well-spread orientations for calibration: gravity directions on a
+/// Fibonacci sphere (so every count >= 6 spans all three axes both ways), yaw advancing by the
+/// golden angle, each held for `dwell_s` [s], rotations at `rotation_rate_rad_s` [rad/s].
+/// Throws Error if count < 1 or the dwell or rate is not > 0.
+Schedule calibration_schedule(int count, double dwell_s, double rotation_rate_rad_s,
+                              double latitude_rad);
+
+/// A temperature profile: (time [s], temperature [K]) points, linear in between, constant
+/// outside. Two points at the same time make a step.
+struct TemperaturePoint {
+  double t_s = 0;
+  double temperature_k = 0;
+};
+struct TemperatureProfile {
+  std::vector<TemperaturePoint> points;  ///< non-decreasing in time, at least one
+};
+
+/// Temperature at t [s] [K] (at a step: the value after it).
+double temperature_at(const TemperatureProfile& profile, double t_s);
+/// Mean temperature over [t0, t1] [K] (exact for the piecewise-linear profile; t0 == t1: the
+/// value at t0).
+double mean_temperature(const TemperatureProfile& profile, double t0_s, double t1_s);
+
 enum class OutputKind { rate, increment, counts };
 /// "rate" | "increment" | "counts"; throws Error otherwise.
 OutputKind parse_output_kind(std::string_view text);
@@ -88,7 +157,11 @@ struct SimulationConfig {
   std::optional<ErrorModel> gyro;   ///< simulated when present (channels gx, gy, gz)
   std::optional<ErrorModel> accel;  ///< simulated when present (channels ax, ay, az)
   Truth truth;                      ///< true signals (e.g. static_truth(pose))
+  /// Multi-position schedule; when present it gives the truth (and `truth` is ignored).
+  std::optional<Schedule> schedule;
   double temperature_k = 298.15;    ///< constant sensor temperature [K]
+  /// Temperature profile; when present it replaces temperature_k and adds the "temp" channel.
+  std::optional<TemperatureProfile> temperature_profile;
   OutputKind kind = OutputKind::rate;
   CountsFormat gyro_counts;         ///< for kind == counts
   CountsFormat accel_counts;        ///< for kind == counts
@@ -109,7 +182,8 @@ std::int64_t flicker_taps(const SimulationConfig& config);
 /// The sampling description for sampled_avar() of a simulated log.
 Sampling sampling_of(const SimulationConfig& config);
 
-/// Streaming generator. Channels are gx, gy, gz (if gyro) then ax, ay, az (if accel).
+/// Streaming generator. Channels are gx, gy, gz (if gyro) then ax, ay, az (if accel), then temp
+/// [K] (if a temperature profile is given).
 class Simulator {
  public:
   explicit Simulator(const SimulationConfig& config);  ///< validates; throws Error
@@ -144,8 +218,8 @@ enum class SampleFormat { csv, f32, f64 };
 /// "csv" | "f32" | "f64"; throws Error otherwise.
 SampleFormat parse_sample_format(std::string_view text);
 
-/// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az" for the sensors
-/// present; f32/f64: little-endian rows of the channels, no time column) and its sidecar to
+/// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az,temp" for the
+/// sensors and temperature present; f32/f64: little-endian rows of the channels, no time column) and its sidecar to
 /// "<path>.json". Both files are written to a temporary name in their directory and renamed
 /// into place; an existing file is an Error unless `overwrite`. `progress(done, total)` is
 /// called after each block when set.
