@@ -138,6 +138,15 @@ TEST_CASE("measured parameters are read from fit and calibrate results") {
   CHECK(c.size() == 3 + 3 + 3);  // 3 biases, 3 scale factors, 3 identifiable cross-axis terms
   CHECK(c[0].ci_high == test::rel(0.11, 1e-15));
 
+  const char* with_temperature = R"json({"gyroscope":{"temperature_coefficients":[
+    {"degree":1,"linear":1e-5,"linear_ci":[8e-6,1.2e-5]},{"degree":1,"linear":-2e-5,"linear_ci":[-3e-5,-1e-5]},
+    {"degree":2,"linear":0.0,"linear_ci":[-1e-6,1e-6]}]}})json";
+  const auto t = measured_parameters_from_json(with_temperature, "cal.json");
+  REQUIRE(t.size() == 3);
+  CHECK(t[1].quantity == MeasuredQuantity::bias_temperature_coefficient);
+  CHECK(t[1].sensor == Sensor::gyro);
+  CHECK(t[1].ci_low == test::rel(-3e-5, 1e-15));
+
   CHECK_THROWS_WITH_AS(measured_parameters_from_json("{\"x\":1}", "other.json"),
                        doctest::Contains("not a sigmatau fit"), Error);
   CHECK_THROWS_WITH_AS(measured_parameters_from_json("{", "broken.json"),

@@ -236,6 +236,20 @@ void read_triad_calibration(const json& triad, Sensor sensor, const std::string&
       }
     }
   }
+  if (triad.contains("temperature_coefficients")) {
+    const json& axes = triad["temperature_coefficients"];
+    for (int i = 0; i < 3 && i < static_cast<int>(axes.size()); ++i) {
+      const json& a = axes.at(i);
+      if (!a.contains("linear") || !a["linear"].is_number()) continue;
+      const double c = a["linear"].get<double>();
+      double lo = c, hi = c;
+      if (a.contains("linear_ci") && a["linear_ci"].is_array()) {
+        lo = a["linear_ci"].at(0).get<double>();
+        hi = a["linear_ci"].at(1).get<double>();
+      }
+      out.push_back({sensor, MeasuredQuantity::bias_temperature_coefficient, kAxes[i], c, lo, hi});
+    }
+  }
   (void)where;
 }
 
