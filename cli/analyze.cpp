@@ -30,6 +30,8 @@ struct ChainArguments {
   std::string output = "sigmatau-report";
   bool force = false;
   unsigned threads = 0;
+  bool dynamic = false;
+  int dynamic_windows = 8;
 };
 
 struct AnalyzeArguments {
@@ -75,6 +77,10 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
       ->capture_default_str();
   command.add_flag("--force", args.force, "replace an existing output directory");
   command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
+  command.add_flag("--dynamic", args.dynamic,
+                   "also the dynamic Allan deviation (OADEV over sliding windows) of each channel");
+  command.add_option("--dynamic-windows", args.dynamic_windows, "number of half-overlapping windows")
+      ->capture_default_str();
 }
 
 std::string utc_now() {
@@ -109,6 +115,10 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   options.convention = parse_density_convention(args.convention);
   options.bias_model = parse_bias_model(args.bias_model);
   options.threads = args.threads;
+  if (args.dynamic) {
+    if (args.dynamic_windows < 2) throw Error("--dynamic-windows must be >= 2");
+    options.dynamic_windows = args.dynamic_windows;
+  }
   options.created_utc = utc_now();
   return options;
 }

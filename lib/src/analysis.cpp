@@ -288,6 +288,30 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     }
     entry["allan"] = json::array();
     for (const auto& curve : curves[c]) entry["allan"].push_back(curve_json(curve));
+    if (options.dynamic_windows > 0) {
+      // Half-overlapping windows: K windows of length 2 M / (K + 1) starting every half window.
+      const auto total = static_cast<std::int64_t>(channel.values.size());
+      const std::int64_t length = 2 * total / (options.dynamic_windows + 1);
+      json windows = json::array();
+      if (length >= 16) {
+        for (int w = 0; w < options.dynamic_windows; ++w) {
+          const std::int64_t start = w * length / 2;
+          const std::span<const double> part(channel.values.data() + start, static_cast<std::size_t>(length));
+          const PhaseSeries window = PhaseSeries::from_samples(part, input.kind, 1.0 / input.rate_hz);
+          const auto m = averaging_factors(TauSpec{}, Statistic::oadev, window.size(), window.tau0_s());
+          std::vector<double> taus, devs;
+          for (const auto& p : compute_deviation(window, Statistic::oadev, m)) {
+            taus.push_back(p.tau_s);
+            devs.push_back(p.dev);
+          }
+          windows.push_back({{"start_s", static_cast<double>(start) / input.rate_hz},
+                             {"end_s", static_cast<double>(start + length) / input.rate_hz},
+                             {"tau", taus},
+                             {"oadev", devs}});
+        }
+      }
+      entry["dynamic"] = {{"window_s", static_cast<double>(length) / input.rate_hz}, {"windows", windows}};
+    }
     const auto rate = as_rate(channel.values, input.kind, input.rate_hz);
     try {
       const PsdCurve psd = welch_psd(rate, input.rate_hz, options.welch);

@@ -242,6 +242,32 @@ SpectrumPlot spectrum_plot(const json& results, const std::string& sensor) {
   return plot;
 }
 
+/// Dynamic ADEV: one curve per time window of one channel, coloured from early (blue) to late
+/// (red), so a change of the noise during the run shows as curves that do not coincide.
+DeviationPlot dynamic_plot(const json& channel) {
+  const DisplayUnits u = display_units(channel.value("sensor", ""));
+  DeviationPlot plot;
+  plot.title = "Dynamic OADEV of " + channel.value("name", std::string("?")) + " (windows of " +
+               fmt(channel["dynamic"].value("window_s", 0.0) / 60.0, 3) + " min)";
+  plot.y_label = "OADEV [" + (u.deviation.empty() ? std::string("SI") : u.deviation) + "]";
+  const auto& windows = channel["dynamic"]["windows"];
+  const std::size_t n = windows.size();
+  for (std::size_t w = 0; w < n; ++w) {
+    PlotCurve c;
+    c.name = fmt(windows[w]["start_s"].get<double>() / 60.0, 3) + "-" +
+             fmt(windows[w]["end_s"].get<double>() / 60.0, 3) + " min";
+    const double f = n > 1 ? static_cast<double>(w) / static_cast<double>(n - 1) : 0.0;
+    char color[8];
+    std::snprintf(color, sizeof color, "#%02x%02x%02x", static_cast<int>(40 + 200 * f), 60,
+                  static_cast<int>(240 - 200 * f));
+    c.color = color;
+    c.x = windows[w]["tau"].get<std::vector<double>>();
+    for (double v : windows[w]["oadev"].get<std::vector<double>>()) c.y.push_back(in_unit(v, u.deviation));
+    plot.curves.push_back(c);
+  }
+  return plot;
+}
+
 CompliancePlot compliance_plot(const json& results) {
   CompliancePlot plot;
   plot.title = "Compliance with " + results["compliance"]["spec"].value("part", std::string("data sheet"));
@@ -302,6 +328,12 @@ PlotSet render_plots(const json& results, const ReportOptions& options) {
     if (!psd.curves.empty()) {
       render("psd_" + sensor, [&](const std::filesystem::path& p) { render_spectrum_plot(psd, p, true); });
     }
+  }
+  for (const auto& channel : results["channels"]) {
+    if (!channel.contains("dynamic") || channel["dynamic"]["windows"].empty()) continue;
+    const DeviationPlot plot = dynamic_plot(channel);
+    render("dynamic_" + channel.value("name", std::string("channel")),
+           [&](const std::filesystem::path& p) { render_deviation_plot(plot, p, true); });
   }
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     const CompliancePlot chart = compliance_plot(results);
@@ -448,6 +480,17 @@ std::string report_html(const json& results, const PlotSet& plots,
     if (plots.svgs.count(name)) h << "<div class=\"plot\" id=\"plot-" << name << "\">" << plots.svgs.at(name) << "</div>\n";
   }
   if (plots.svgs.empty()) h << "<p class=\"muted\">No plots (see warnings).</p>\n";
+  bool dynamic_heading = false;
+  for (const auto& [name, svg] : plots.svgs) {
+    if (name.rfind("dynamic_", 0) != 0) continue;
+    if (!dynamic_heading) {
+      h << "<h2 id=\"dynamic\">Dynamic Allan deviation</h2><p class=\"muted\">OADEV over "
+           "half-overlapping windows, early (blue) to late (red): curves that do not coincide "
+           "mean the noise changed during the run.</p>\n";
+      dynamic_heading = true;
+    }
+    h << "<div class=\"plot\" id=\"plot-" << name << "\">" << svg << "</div>\n";
+  }
 
   // Filter tuning.
   if (results.contains("filter") && !results["filter"].empty()) {

@@ -66,6 +66,9 @@ struct AnalysisOptions {
   DensityConvention convention = DensityConvention::two_sided;
   BiasModel bias_model = BiasModel::random_walk;
   unsigned threads = 0;
+  /// Dynamic Allan deviation: OADEV over this many half-overlapping windows of the (trimmed)
+  /// log, so a change of the noise during the run shows; 0: off.
+  int dynamic_windows = 0;
   /// Taps of the Kasdin flicker filter when the log is a sigmatau simulation (the demo), so
   /// the fit models the simulated flicker exactly; 0 for real sensors.
   std::int64_t flicker_taps = 0;

@@ -1,0 +1,36 @@
+# `sigmatau analyze`: the whole chain on the shipped example log into one directory.
+set(example ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz)
+set(analyze_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_analyze)
+file(REMOVE_RECURSE ${analyze_dir})
+file(MAKE_DIRECTORY ${analyze_dir})
+
+sigmatau_cli_test(NAME cli_analyze_example EXIT 0
+  STDOUT "\\| gx \\|.*deg/sqrt\\(h\\).*wrote .*example"
+  ARGS analyze ${example} --time-column t --gyro-unit deg/s --dynamic --rate-out 200
+       --spec adi_adis16465 -o ${analyze_dir}/example --force)
+add_test(NAME cli_analyze_example_files
+         COMMAND ${CMAKE_COMMAND} -DDIR=${analyze_dir}/example
+                 "-DFILES=report.html;results.json;summary.md;adev_gyro.svg;psd_gyro.svg;compliance.svg;dynamic_gx.svg;kalibr_imu_200Hz.yaml;filter_200Hz.json;px4_ekf2_200Hz.params"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_files.cmake)
+set_tests_properties(cli_analyze_example_files PROPERTIES DEPENDS cli_analyze_example)
+sigmatau_cli_test(NAME cli_analyze_refuses_existing EXIT 2 STDERR "exists; use --force"
+  ARGS analyze ${example} --time-column t -o ${analyze_dir}/example)
+set_tests_properties(cli_analyze_refuses_existing PROPERTIES DEPENDS cli_analyze_example_files)
+
+# Without gnuplot the results and the report are still written, and a warning says how to
+# install it.
+sigmatau_cli_test(NAME cli_analyze_without_gnuplot EXIT 0
+  STDERR "gnuplot not found.*apt-get install gnuplot-nox"
+  ARGS analyze ${example} --time-column t --gyro-unit deg/s -o ${analyze_dir}/no_gnuplot --force)
+set_tests_properties(cli_analyze_without_gnuplot PROPERTIES ENVIRONMENT "PATH=/nonexistent")
+add_test(NAME cli_analyze_without_gnuplot_files
+         COMMAND ${CMAKE_COMMAND} -DDIR=${analyze_dir}/no_gnuplot
+                 "-DFILES=report.html;results.json;summary.md" "-DABSENT=adev_gyro.svg"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_files.cmake)
+set_tests_properties(cli_analyze_without_gnuplot_files PROPERTIES DEPENDS cli_analyze_without_gnuplot)
+
+sigmatau_cli_test(NAME cli_analyze_bad_trim EXIT 2 STDERR "--trim"
+  ARGS analyze ${example} --time-column t --trim soon -o ${analyze_dir}/bad_trim)
+sigmatau_cli_test(NAME cli_analyze_bad_gyro_unit EXIT 2 STDERR "--gyro-unit"
+  NO_FILE ${analyze_dir}/bad_unit
+  ARGS analyze ${example} --time-column t --gyro-unit m/s^2 -o ${analyze_dir}/bad_unit)
