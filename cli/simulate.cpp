@@ -5,7 +5,10 @@
 #include <memory>
 
 #include "log_options.hpp"
+#include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/resources.hpp"
+#include "sigmatau/spec.hpp"
 #include "sigmatau/simulate.hpp"
 #include "sigmatau/units.hpp"
 #include "verbs.hpp"
@@ -16,6 +19,8 @@ namespace {
 struct SimulateArguments {
   std::string gyro_model;
   std::string accel_model;
+  std::string spec;
+  std::string convention = "two-sided";
   double rate_hz = 0;
   std::string duration;
   std::uint64_t seed = 1;
@@ -138,9 +143,23 @@ void run_simulate(const SimulateArguments& a) {
   pose.yaw_rad = parse_quantity_as(a.yaw, dim::angle, "--yaw");
   c.truth = static_truth(pose);
   if (!a.temperature.empty()) c.temperature_profile = temperature_profile(a.temperature);
+  std::optional<DataSheet> sheet;
+  if (!a.spec.empty()) {
+    if (!a.gyro_model.empty() || !a.accel_model.empty()) {
+      throw Error("give either --spec or --model / --accel-model, not both");
+    }
+    sheet = load_data_sheet(find_data_sheet(a.spec, resource_dir("specs")));
+  }
+  // A data sheet's noise terms, nominal values (typ, else max), read with the chosen density
+  // convention (convert.hpp); a sensor the sheet does not describe is simulated noise-free.
+  const auto sheet_noise = [&](Sensor sensor) -> std::array<NoiseTerms, 3> {
+    if (!sheet || !sheet->sensor(sensor)) return {};
+    return triad_from_data_sheet(*sheet, sensor, parse_density_convention(a.convention)).axes;
+  };
   for (const auto& s : split_list(a.sensors, "--sensors")) {
     if (s == "gyro") {
       ErrorModel m;
+      m.noise = sheet_noise(Sensor::gyro);
       if (!a.gyro_model.empty()) {
         const NoiseTerms t = parse_noise_terms(a.gyro_model, Sensor::gyro);
         m.noise = {t, t, t};
@@ -151,6 +170,7 @@ void run_simulate(const SimulateArguments& a) {
       c.gyro = m;
     } else if (s == "accel") {
       ErrorModel m;
+      m.noise = sheet_noise(Sensor::accel);
       if (!a.accel_model.empty()) {
         const NoiseTerms t = parse_noise_terms(a.accel_model, Sensor::accel);
         m.noise = {t, t, t};
@@ -200,6 +220,11 @@ void add_simulate_command(CLI::App& app) {
                       "gyro noise per axis, e.g. \"N=0.15 deg/sqrt(h), B=3 deg/h, "
                       "K=0.02 deg/h/sqrt(h)\" (keys Q N B K R, GM=<sigma> @ <tau>, "
                       "SIN=<amplitude> @ <frequency>)");
+  command->add_option("--spec", args->spec,
+                      "simulate the noise terms of a data sheet (file or name in specs/)");
+  command->add_option("--density-convention", args->convention,
+                      "how --spec's noise density is read: two-sided (N = ND) or one-sided")
+      ->capture_default_str();
   command->add_option("--accel-model", args->accel_model,
                       "accelerometer noise per axis, e.g. \"N=60 ug/sqrt(Hz), B=0.05 mg\"");
   command->add_option("--rate", args->rate_hz, "sample rate [Hz]")->required();
