@@ -36,7 +36,7 @@ sigmatau_cli_test(NAME cli_simulate_from_spec EXIT 0 STDOUT "wrote"
   ARGS simulate --spec tdk_icm42688p --sensors gyro --rate 200 --duration 10min --seed 3
        -o ${sim_spec_out} --force)
 sigmatau_cli_test(NAME cli_simulate_from_spec_psd EXIT 0
-  STDOUT "gx +N = 0\\.0028[0-9]* \\[.*deg/s/sqrt\\(Hz\\)"
+  STDOUT "gx +N = 0\\.0028[0-9]* \\[.*\\] deg/s/sqrt\\(Hz\\)"
   ARGS psd ${sim_spec_out} --time-column t --unit rad/s --out-unit "deg/s/sqrt(Hz)")
 set_tests_properties(cli_simulate_from_spec_psd PROPERTIES DEPENDS cli_simulate_from_spec)
 sigmatau_cli_test(NAME cli_simulate_spec_and_model EXIT 2 STDERR "either --spec or --model"
