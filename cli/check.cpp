@@ -66,34 +66,9 @@ void run_check(const CheckArguments& args) {
 
   std::ostringstream out;
   if (args.format == "json") {
-    nlohmann::json doc;
+    nlohmann::json doc = nlohmann::json::parse(compliance_json(items, sheet, options));
     doc["tool"] = "sigmatau";
     doc["version"] = SIGMATAU_VERSION;
-    doc["spec"] = {{"name", sheet.name}, {"part", sheet.part}, {"manufacturer", sheet.manufacturer}};
-    doc["density_convention"] = std::string(to_string(options.convention));
-    doc["items"] = nlohmann::json::array();
-    for (const auto& item : items) {
-      nlohmann::json j = {{"sensor", std::string(to_string(item.measured.sensor))},
-                          {"quantity", std::string(to_string(item.measured.quantity))},
-                          {"axis", item.measured.axis},
-                          {"value", item.measured.value},
-                          {"ci_low", item.measured.ci_low},
-                          {"ci_high", item.measured.ci_high},
-                          {"verdict", std::string(to_string(item.verdict))}};
-      if (item.verdict != Verdict::not_specified) {
-        j["spec_field"] = item.spec_field;
-        j["limit_text"] = item.limit_text;
-        j["limit_is_typical"] = item.limit_is_typical;
-        j["limit_si"] = item.limit_si;
-        j["compared"] = item.compared;
-        j["compared_upper"] = item.compared_upper;
-        j["margin"] = item.margin;
-        j["margin_upper"] = item.margin_upper;
-        j["rule"] = item.rule;
-      }
-      doc["items"].push_back(j);
-    }
-    doc["failed"] = any_failed(items);
     out << doc.dump(1) << "\n";
   } else {
     out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "

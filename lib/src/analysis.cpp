@@ -407,37 +407,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     ComplianceOptions compliance_options;
     compliance_options.convention = options.convention;
     const auto items = check_compliance(measured, sheet, compliance_options);
-    json list = json::array();
-    int pass = 0, marginal = 0, fail = 0;
-    for (const auto& item : items) {
-      json j = {{"sensor", std::string(to_string(item.measured.sensor))},
-                {"quantity", std::string(to_string(item.measured.quantity))},
-                {"axis", item.measured.axis},
-                {"value", item.measured.value},
-                {"ci_low", item.measured.ci_low},
-                {"ci_high", item.measured.ci_high},
-                {"verdict", std::string(to_string(item.verdict))}};
-      if (item.verdict != Verdict::not_specified) {
-        j["spec_field"] = item.spec_field;
-        j["limit_text"] = item.limit_text;
-        j["limit_is_typical"] = item.limit_is_typical;
-        j["limit_si"] = item.limit_si;
-        j["compared"] = item.compared;
-        j["compared_upper"] = item.compared_upper;
-        j["margin"] = item.margin;
-        j["margin_upper"] = item.margin_upper;
-        j["rule"] = item.rule;
-      }
-      pass += item.verdict == Verdict::pass;
-      marginal += item.verdict == Verdict::marginal;
-      fail += item.verdict == Verdict::fail;
-      list.push_back(j);
-    }
-    const std::string verdict = fail > 0 ? "fail" : marginal > 0 ? "marginal" : pass > 0 ? "all pass" : "nothing to check";
-    results["compliance"] = {{"spec", {{"name", sheet.name}, {"part", sheet.part}, {"manufacturer", sheet.manufacturer}}},
-                             {"convention", std::string(to_string(options.convention))},
-                             {"verdict", verdict},
-                             {"items", list}};
+    results["compliance"] = json::parse(compliance_json(items, sheet, compliance_options));
     json lines = json::object();
     for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
       if (!sheet.sensor(sensor)) continue;

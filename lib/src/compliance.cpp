@@ -144,6 +144,49 @@ bool any_failed(const std::vector<ComplianceItem>& items) {
                      [](const ComplianceItem& i) { return i.verdict == Verdict::fail; });
 }
 
+std::string overall_verdict(const std::vector<ComplianceItem>& items) {
+  int pass = 0, marginal = 0, fail = 0;
+  for (const auto& item : items) {
+    pass += item.verdict == Verdict::pass;
+    marginal += item.verdict == Verdict::marginal;
+    fail += item.verdict == Verdict::fail;
+  }
+  return fail > 0 ? "fail" : marginal > 0 ? "marginal" : pass > 0 ? "all pass" : "nothing to check";
+}
+
+std::string compliance_json(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
+                            const ComplianceOptions& options) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& item : items) {
+    nlohmann::json j = {{"sensor", std::string(to_string(item.measured.sensor))},
+                        {"quantity", std::string(to_string(item.measured.quantity))},
+                        {"axis", item.measured.axis},
+                        {"value", item.measured.value},
+                        {"ci_low", item.measured.ci_low},
+                        {"ci_high", item.measured.ci_high},
+                        {"verdict", std::string(to_string(item.verdict))}};
+    if (item.verdict != Verdict::not_specified) {
+      j["spec_field"] = item.spec_field;
+      j["limit_text"] = item.limit_text;
+      j["limit_is_typical"] = item.limit_is_typical;
+      j["limit_si"] = item.limit_si;
+      j["compared"] = item.compared;
+      j["compared_upper"] = item.compared_upper;
+      j["margin"] = item.margin;
+      j["margin_upper"] = item.margin_upper;
+      j["rule"] = item.rule;
+    }
+    list.push_back(j);
+  }
+  const nlohmann::json doc = {
+      {"spec", {{"name", sheet.name}, {"part", sheet.part}, {"manufacturer", sheet.manufacturer}}},
+      {"density_convention", std::string(to_string(options.convention))},
+      {"verdict", overall_verdict(items)},
+      {"failed", any_failed(items)},
+      {"items", list}};
+  return doc.dump(1);
+}
+
 namespace {
 
 using nlohmann::json;

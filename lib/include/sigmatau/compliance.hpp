@@ -81,6 +81,18 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
 /// True when any item failed (the `check` exit code 1).
 bool any_failed(const std::vector<ComplianceItem>& items);
 
+/// The overall verdict: "fail" when any item failed, else "marginal" when any is marginal, else
+/// "all pass" when something passed, else "nothing to check".
+std::string overall_verdict(const std::vector<ComplianceItem>& items);
+
+/// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
+/// "verdict","failed","items":[{"sensor","quantity","axis","value","ci_low","ci_high","verdict",
+/// and when specified "spec_field","limit_text","limit_is_typical","limit_si","compared",
+/// "compared_upper","margin","margin_upper","rule"}]}. Written by `check --format json` and into
+/// analyze's results.json.
+std::string compliance_json(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
+                            const ComplianceOptions& options);
+
 /// Reads measured parameters from a sigmatau result file's JSON text: a `fit` result
 /// ({"channels":[{"name","quantity","parameters":{"N":{...},"B":...,"K":...}}]}), a `calibrate`
 /// result ({"accelerometer":{...},"gyroscope":{...}}), or an `analyze` results.json (which holds
