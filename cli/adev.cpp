@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cctype>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +10,8 @@
 
 #include "log_options.hpp"
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/allan_stream.hpp"
+#include "sigmatau/log_reader.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/plot.hpp"
@@ -28,7 +31,43 @@ struct AdevArguments {
   unsigned threads = 0;
   bool force = false;
   std::string plot;
+  std::string mode = "auto";
+  int density = kDefaultStreamDensity;
+  std::string memory = "4GiB";
+  bool partial = false;
 };
+
+/// Bytes from "1GiB", "512MiB", "800M", "2G", "123456" (K/M/G/T decimal, Ki/Mi/Gi/Ti binary,
+/// an optional trailing B). Throws Error naming the option otherwise.
+std::int64_t parse_bytes(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::string suffix = text.substr(used);
+  if (!suffix.empty() && (suffix.back() == 'B' || suffix.back() == 'b')) suffix.pop_back();
+  double factor = 0;
+  if (suffix.empty()) factor = 1;
+  if (suffix == "K" || suffix == "k") factor = 1e3;
+  if (suffix == "M") factor = 1e6;
+  if (suffix == "G") factor = 1e9;
+  if (suffix == "T") factor = 1e12;
+  if (suffix == "Ki") factor = 1024.0;
+  if (suffix == "Mi") factor = 1024.0 * 1024;
+  if (suffix == "Gi") factor = 1024.0 * 1024 * 1024;
+  if (suffix == "Ti") factor = 1024.0 * 1024 * 1024 * 1024;
+  if (used == 0 || !(factor > 0) || !(value > 0) || !std::isfinite(value)) {
+    throw Error("--memory must be a size such as 1GiB, 512MiB or 800M, got \"" + text + "\"");
+  }
+  return static_cast<std::int64_t>(value * factor);
+}
+
+/// Bytes the exact in-memory mode needs per sample and channel: the raw value (8) while reading,
+/// then the double-double phase (16) and the compact sweep copy (8) of one channel at a time.
+constexpr std::int64_t kExactBytesPerSample = 32;
 
 /// How deviations (computed in SI, or in the input's own unit without --unit) are printed.
 struct OutputUnit {
@@ -177,6 +216,94 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
   return doc.dump(1) + "\n";
 }
 
+/// Reads the whole log (as read_log) with a progress line on a terminal.
+LoadedChannels read_with_progress(const AdevArguments& args) {
+  const LogOptions options = log_options_from(args.log);
+  LoadedChannels loaded;
+  set_input_unit(args.log, loaded);
+  LogReader reader(options);
+  Log& log = loaded.log;
+  log.path = options.path;
+  log.channel_names = reader.channel_names();
+  log.channels.resize(log.channel_names.size());
+  SampleBlock block;
+  Progress progress;
+  while (reader.read_block(block)) {
+    for (std::size_t c = 0; c < block.values.size(); ++c) {
+      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
+    }
+    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+    progress.update(reader.bytes_read(), reader.total_bytes());
+  }
+  progress.finish();
+  log.timing = reader.timing();
+  if (log.channels.empty() || log.channels[0].empty()) {
+    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                     "no samples: the input holds no data rows");
+  }
+  loaded.rate_hz = resolve_rate_hz(args.log.rate_hz, log.timing, args.log.input);
+  if (loaded.to_si != 1.0) {
+    for (auto& channel : log.channels) {
+      for (double& v : channel) v *= loaded.to_si;
+    }
+  }
+  return loaded;
+}
+
+/// One pass over the input with an AllanStream per channel. On a read error after some samples,
+/// `partial_error` receives the message and the curves describe what was read (when --partial).
+std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
+                                                const std::vector<Statistic>& stats,
+                                                const TauSpec& taus, LoadedChannels& loaded,
+                                                std::size_t& samples, std::string& partial_error) {
+  const LogOptions options = log_options_from(args.log);
+  set_input_unit(args.log, loaded);
+  LogReader reader(options);
+  loaded.log.path = options.path;
+  loaded.log.channel_names = reader.channel_names();
+  StreamSettings settings;
+  settings.statistics = stats;
+  settings.taus = taus;
+  settings.density = args.density;
+  std::vector<AllanStream> streams;
+  SampleBlock block;
+  Progress progress;
+  samples = 0;
+  try {
+    while (reader.read_block(block)) {
+      if (streams.empty()) {
+        // The sample interval is fixed from the first block (the time column's median interval
+        // so far, or --rate): a stream cannot wait for the end of the log.
+        loaded.rate_hz = resolve_rate_hz(args.log.rate_hz, reader.timing(), args.log.input);
+        for (std::size_t c = 0; c < block.values.size(); ++c) {
+          streams.emplace_back(loaded.kind, 1.0 / loaded.rate_hz, settings);
+        }
+      }
+      for (std::size_t c = 0; c < block.values.size(); ++c) {
+        auto& v = block.values[c];
+        if (loaded.to_si != 1.0) {
+          for (double& x : v) x *= loaded.to_si;
+        }
+        streams[c].add(v);
+      }
+      samples += static_cast<std::size_t>(block.rows());
+      progress.update(reader.bytes_read(), reader.total_bytes());
+    }
+  } catch (const Error& e) {
+    if (!args.partial || samples == 0) throw;
+    partial_error = e.what();
+  }
+  progress.finish();
+  loaded.log.timing = reader.timing();
+  if (streams.empty()) {
+    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                     "no samples: the input holds no data rows");
+  }
+  std::vector<std::vector<AllanCurve>> curves;
+  for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
+  return curves;
+}
+
 void run_adev(const AdevArguments& args) {
   std::vector<Statistic> stats;
   for (const auto& name : split_list(args.statistics, "--stat")) stats.push_back(parse_statistic(name));
@@ -190,16 +317,43 @@ void run_adev(const AdevArguments& args) {
     check_can_write(args.plot, args.force);
   }
 
-  LoadedChannels loaded = load_channels(args.log);
-  const OutputUnit unit = output_unit(loaded, args.out_unit);
-  const auto samples = loaded.log.channels.front().size();
-  std::vector<PhaseSeries> series;
-  series.reserve(loaded.log.channels.size());
-  for (auto& channel : loaded.log.channels) {
-    series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
-    std::vector<double>().swap(channel);  // the raw samples are no longer needed
+  if (args.mode != "exact" && args.mode != "stream" && args.mode != "auto") {
+    throw Error("--mode must be exact, stream or auto, got \"" + args.mode + "\"");
   }
-  const auto curves = compute_allan_curves(series, stats, taus, args.ci, args.threads);
+  if (!(args.density >= 1)) throw Error("--density must be >= 1, got " + std::to_string(args.density));
+  const std::int64_t memory = parse_bytes(args.memory);
+  if (args.partial && args.mode == "exact") {
+    throw Error("--partial is for --mode stream (exact results need the whole log)");
+  }
+  bool stream = args.mode == "stream";
+  if (args.mode == "auto" && !args.log.binary.empty() && args.log.input != "-") {
+    // Binary input: the number of samples is known from the file size.
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(args.log.input, ec);
+    if (!ec && static_cast<std::int64_t>(bytes) / 2 * kExactBytesPerSample > memory) {
+      std::cerr << "sigmatau: " << args.log.input << " needs more than --memory " << args.memory
+                << " in exact mode; using --mode stream --density " << args.density << "\n";
+      stream = true;
+    }
+  }
+  LoadedChannels loaded;
+  std::size_t samples = 0;
+  std::string partial_error;
+  std::vector<std::vector<AllanCurve>> curves;
+  if (stream) {
+    curves = run_stream(args, stats, taus, loaded, samples, partial_error);
+  } else {
+    loaded = read_with_progress(args);
+    samples = loaded.log.channels.front().size();
+    std::vector<PhaseSeries> series;
+    series.reserve(loaded.log.channels.size());
+    for (auto& channel : loaded.log.channels) {
+      series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+      std::vector<double>().swap(channel);  // the raw samples are no longer needed
+    }
+    curves = compute_allan_curves(series, stats, taus, args.ci, args.threads);
+  }
+  const OutputUnit unit = output_unit(loaded, args.out_unit);
 
   std::string text;
   if (args.format == "table") text = render_table(loaded, samples, stats, curves, unit);
@@ -209,6 +363,11 @@ void run_adev(const AdevArguments& args) {
     std::cout << text;
   } else {
     write_file_atomically(args.output, text, args.force);
+  }
+  if (!partial_error.empty()) {
+    // --partial: the curves above describe the samples read before the error; still exit 2.
+    throw Error(partial_error + " (--partial: results written for the " + std::to_string(samples) +
+                " samples read before it)");
   }
   if (!args.plot.empty()) {
     // The first statistic asked, every channel, with its confidence band.
@@ -258,6 +417,19 @@ void add_adev_command(CLI::App& app) {
                       "also plot the first statistic to FILE (.svg, .png or .pdf; needs gnuplot)");
   command->add_option("--threads", args->threads, "worker threads (0: one per core)")
       ->capture_default_str();
+  command->add_option("--mode", args->mode,
+                      "exact (whole log in memory), stream (one pass, bounded memory, strided "
+                      "overlap at long taus, honest EDF), auto (exact unless a binary input "
+                      "would need more than --memory)")
+      ->capture_default_str();
+  command->add_option("--density", args->density,
+                      "stream mode: start points per tau K (stride max(1, m/K) samples)")
+      ->capture_default_str();
+  command->add_option("--memory", args->memory, "memory limit for --mode auto, e.g. 1GiB")
+      ->capture_default_str();
+  command->add_flag("--partial",
+                    args->partial, "stream mode: on a read error, still write the results for "
+                                   "what was read (exit code stays 2)");
   command->callback([args] { run_adev(*args); });
 }
 

@@ -2,6 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::cli {
@@ -47,7 +51,7 @@ void add_log_options(CLI::App& command, LogArguments& args) {
   command.add_option("--skip-bytes", args.skip_bytes, "bytes of header to skip (--binary)");
 }
 
-LoadedChannels load_channels(const LogArguments& args) {
+LogOptions log_options_from(const LogArguments& args) {
   LogOptions options;
   options.path = args.input;
   if (!args.columns.empty()) options.columns = split_list(args.columns, "--columns");
@@ -64,8 +68,10 @@ LoadedChannels load_channels(const LogArguments& args) {
   } else if (args.channels != 0 || args.big_endian || args.skip_bytes != 0) {
     throw Error("--channels, --big-endian and --skip-bytes are for --binary input");
   }
+  return options;
+}
 
-  LoadedChannels loaded;
+void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.kind = parse_data_kind(args.kind);
   loaded.unit = args.unit;
   if (!args.unit.empty()) {
@@ -73,6 +79,12 @@ LoadedChannels load_channels(const LogArguments& args) {
     loaded.to_si = unit.factor;
     loaded.dimension = unit.dimension;
   }
+}
+
+LoadedChannels load_channels(const LogArguments& args) {
+  const LogOptions options = log_options_from(args);
+  LoadedChannels loaded;
+  set_input_unit(args, loaded);
   loaded.log = read_log(options);
   loaded.rate_hz = resolve_rate_hz(args.rate_hz, loaded.log.timing, args.input);
   if (loaded.to_si != 1.0) {
@@ -81,6 +93,39 @@ LoadedChannels load_channels(const LogArguments& args) {
     }
   }
   return loaded;
+}
+
+namespace {
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+/// Seconds between redraws of the progress line.
+constexpr double kProgressPeriod = 0.25;
+}  // namespace
+
+Progress::Progress() : enabled_(stderr_is_tty()), start_s_(now_s()) {}
+Progress::~Progress() { finish(); }
+
+void Progress::update(std::int64_t bytes_read, std::int64_t total_bytes) {
+  if (!enabled_) return;
+  const double t = now_s();
+  if (last_s_ >= 0 && t - last_s_ < kProgressPeriod) return;
+  last_s_ = t;
+  const double mb = static_cast<double>(bytes_read) / 1e6;
+  const double rate = mb / std::max(t - start_s_, 1e-9);
+  if (total_bytes > 0) {
+    std::fprintf(stderr, "\r  read %.1f of %.1f MB (%.0f%%), %.0f MB/s   ", mb,
+                 static_cast<double>(total_bytes) / 1e6,
+                 100.0 * static_cast<double>(bytes_read) / static_cast<double>(total_bytes), rate);
+  } else {
+    std::fprintf(stderr, "\r  read %.1f MB, %.0f MB/s   ", mb, rate);
+  }
+  drawn_ = true;
+}
+
+void Progress::finish() {
+  if (drawn_) std::fprintf(stderr, "\r%60s\r", "");
+  drawn_ = false;
 }
 
 }  // namespace sigmatau::cli

@@ -42,6 +42,28 @@ struct LoadedChannels {
 
 LoadedChannels load_channels(const LogArguments& args);
 
+/// The reader options of the arguments (validated as load_channels does).
+LogOptions log_options_from(const LogArguments& args);
+
+/// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.
+void set_input_unit(const LogArguments& args, LoadedChannels& loaded);
+
+/// A one-line progress display on stderr (only when stderr is a terminal): bytes read, of the
+/// total when known, and the rate. Call update() often; it redraws at most 4 times a second.
+class Progress {
+ public:
+  Progress();
+  ~Progress();
+  void update(std::int64_t bytes_read, std::int64_t total_bytes);
+  void finish();
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  double start_s_;
+  double last_s_ = -1;
+};
+
 /// Splits "a,b,c" (empty fields are an Error naming the option).
 std::vector<std::string> split_list(const std::string& text, const std::string& option);
 

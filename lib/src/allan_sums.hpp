@@ -15,17 +15,38 @@
 #include <span>
 #include <vector>
 
+#include "allan_dd.hpp"
 #include "sigmatau/phase_series.hpp"
 
 namespace sigmatau::detail {
+
+/// The phase in the form the overlapping sweep reads: one double per point measured from a base
+/// point per block of kCompactBlock points, x[k] = base[k / kCompactBlock] + offset[k], with the
+/// bases in double-double. Half the memory traffic of the double-double phase, and a difference
+/// needs three or four loads instead of six or eight. offset[k] is W(b B, k - b B) rounded once,
+/// so it is accurate to ~1 ulp of the phase excursion within its block; every difference adds the
+/// exact (double-double) difference of the bases, rounded once.
+struct CompactPhase {
+  explicit CompactPhase(const PhaseSeries& series);
+  std::vector<double> offset;
+  std::vector<DoubleDouble> base;
+};
 
 /// For each m (ascending, each with counts[t] >= 1 terms), sum_{n < counts[t]} D(n)^2 with
 /// D = D2 (order 2, OADEV) or D3 (order 3, OHDEV) and n = 0, 1, 2, ... (every start point).
 /// All factors are swept together, block by block, so the phase is read from memory about once
 /// per group of factors instead of once per factor.
+/// Factors below 4096 read the double-double phase itself (see kCompactMin in allan_sums.cpp).
 std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
                                      std::span<const std::int64_t> m,
                                      std::span<const std::int64_t> counts);
+
+/// sum_{i < len} D(n0 + i)^2 on raw double-double arrays h, l (D = D2 for order 2, D3 for
+/// order 3, lag m), summed in kLanes lanes: the kernel of the overlapping sums, for other
+/// accumulators (allan_stream.cpp) that hold their own phase buffers. len <= 2048 keeps each
+/// plain-double lane sum as short as in the exact sums.
+double sum_squares(const double* h, const double* l, int order, std::int64_t m, std::int64_t n0,
+                   std::int64_t len);
 
 /// sum_{k < count} D(k m)^2 with D = D2 (order 2, ADEV) or D3 (order 3, HDEV): stride m.
 double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::int64_t count);
