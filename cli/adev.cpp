@@ -216,40 +216,6 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
   return doc.dump(1) + "\n";
 }
 
-/// Reads the whole log (as read_log) with a progress line on a terminal.
-LoadedChannels read_with_progress(const AdevArguments& args) {
-  const LogOptions options = log_options_from(args.log);
-  LoadedChannels loaded;
-  set_input_unit(args.log, loaded);
-  LogReader reader(options);
-  Log& log = loaded.log;
-  log.path = options.path;
-  log.channel_names = reader.channel_names();
-  log.channels.resize(log.channel_names.size());
-  SampleBlock block;
-  Progress progress;
-  while (reader.read_block(block)) {
-    for (std::size_t c = 0; c < block.values.size(); ++c) {
-      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
-    }
-    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
-    progress.update(reader.bytes_read(), reader.total_bytes());
-  }
-  progress.finish();
-  log.timing = reader.timing();
-  if (log.channels.empty() || log.channels[0].empty()) {
-    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
-                     "no samples: the input holds no data rows");
-  }
-  loaded.rate_hz = resolve_rate_hz(args.log.rate_hz, log.timing, args.log.input);
-  if (loaded.to_si != 1.0) {
-    for (auto& channel : log.channels) {
-      for (double& v : channel) v *= loaded.to_si;
-    }
-  }
-  return loaded;
-}
-
 /// One pass over the input with an AllanStream per channel. On a read error after some samples,
 /// `partial_error` receives the message and the curves describe what was read (when --partial).
 std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
@@ -343,7 +309,7 @@ void run_adev(const AdevArguments& args) {
   if (stream) {
     curves = run_stream(args, stats, taus, loaded, samples, partial_error);
   } else {
-    loaded = read_with_progress(args);
+    loaded = load_channels(args.log);
     samples = loaded.log.channels.front().size();
     std::vector<PhaseSeries> series;
     series.reserve(loaded.log.channels.size());

@@ -85,7 +85,27 @@ LoadedChannels load_channels(const LogArguments& args) {
   const LogOptions options = log_options_from(args);
   LoadedChannels loaded;
   set_input_unit(args, loaded);
-  loaded.log = read_log(options);
+  // As read_log, with a progress line on a terminal.
+  LogReader reader(options);
+  Log& log = loaded.log;
+  log.path = options.path;
+  log.channel_names = reader.channel_names();
+  log.channels.resize(log.channel_names.size());
+  SampleBlock block;
+  Progress progress;
+  while (reader.read_block(block)) {
+    for (std::size_t c = 0; c < block.values.size(); ++c) {
+      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
+    }
+    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+    progress.update(reader.bytes_read(), reader.total_bytes());
+  }
+  progress.finish();
+  log.timing = reader.timing();
+  if (log.channels.empty() || log.channels[0].empty()) {
+    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                     "no samples: the input holds no data rows");
+  }
   loaded.rate_hz = resolve_rate_hz(args.rate_hz, loaded.log.timing, args.input);
   if (loaded.to_si != 1.0) {
     for (auto& channel : loaded.log.channels) {
