@@ -49,6 +49,12 @@ void add_log_options(CLI::App& command, LogArguments& args) {
   command.add_option("--channels", args.channels, "number of interleaved channels (--binary)");
   command.add_flag("--big-endian", args.big_endian, "binary samples are big-endian");
   command.add_option("--skip-bytes", args.skip_bytes, "bytes of header to skip (--binary)");
+  command.add_option("--gaps", args.gaps,
+                     "time-stamp gaps (> 1.5 intervals) and backwards stamps: report (default), "
+                     "error, split (segments), fill (linear interpolation)")
+      ->capture_default_str();
+  command.add_option("--nonfinite", args.nonfinite, "NaN/Inf values: error (default) or skip the row")
+      ->capture_default_str();
 }
 
 LogOptions log_options_from(const LogArguments& args) {
@@ -57,6 +63,8 @@ LogOptions log_options_from(const LogArguments& args) {
   if (!args.columns.empty()) options.columns = split_list(args.columns, "--columns");
   options.time_column = args.time_column;
   options.time_unit = parse_time_unit(args.time_unit);
+  options.gaps = parse_gap_policy(args.gaps);
+  options.nonfinite = parse_nonfinite_policy(args.nonfinite);
   if (!args.binary.empty()) {
     options.binary = parse_binary_format(args.binary);
     if (!(args.channels > 0)) throw Error("--binary needs --channels C (C >= 1)");
@@ -85,23 +93,13 @@ LoadedChannels load_channels(const LogArguments& args) {
   const LogOptions options = log_options_from(args);
   LoadedChannels loaded;
   set_input_unit(args, loaded);
-  // As read_log, with a progress line on a terminal.
-  LogReader reader(options);
-  Log& log = loaded.log;
-  log.path = options.path;
-  log.channel_names = reader.channel_names();
-  log.channels.resize(log.channel_names.size());
-  SampleBlock block;
   Progress progress;
-  while (reader.read_block(block)) {
-    for (std::size_t c = 0; c < block.values.size(); ++c) {
-      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
-    }
-    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
-    progress.update(reader.bytes_read(), reader.total_bytes());
-  }
+  loaded.log = read_log(options, [&](std::int64_t done, std::int64_t total) {
+    progress.update(done, total);
+  });
   progress.finish();
-  log.timing = reader.timing();
+  Log& log = loaded.log;
+  if (options.gaps == GapPolicy::fill) fill_gaps(log);
   if (log.channels.empty() || log.channels[0].empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
                      "no samples: the input holds no data rows");

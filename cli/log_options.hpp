@@ -25,6 +25,8 @@ struct LogArguments {
   int channels = 0;
   bool big_endian = false;
   std::int64_t skip_bytes = 0;
+  std::string gaps = "report";     // report|error|split|fill
+  std::string nonfinite = "error"; // error|skip
 };
 
 /// Adds INPUT and the log options to `command`.

@@ -19,6 +19,9 @@ packages=(
 if [[ "${1:-}" == "test" ]]; then
   packages+=(chromium)                        # the report is checked in a real browser
 fi
+if [[ "${1:-}" == "fuzz" ]]; then
+  packages+=(clang libclang-rt-14-dev)        # libFuzzer harnesses (scripts/fuzz.sh)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

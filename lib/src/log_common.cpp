@@ -4,6 +4,7 @@
 // kMedianWindow intervals; a gap is dt > kGapFactor * nominal.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -21,6 +22,9 @@ constexpr std::size_t kMedianWindow = 100000;
 constexpr double kGapFactor = 1.5;
 /// Gaps stored in the report (all are counted).
 constexpr std::size_t kMaxStoredGaps = 1000;
+/// Segments kept under GapPolicy::split: 8 MB of row indices at most (bounded memory); a log
+/// broken more often than that has no contiguous stretch worth analysing.
+constexpr std::size_t kMaxSegments = 1000000;
 /// Column names listed in an "unknown column" message before "...".
 constexpr std::size_t kMaxListedNames = 20;
 
@@ -36,6 +40,32 @@ std::string unnamed_column(std::size_t index) {
 bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
 }
+
+/// A duration for a message: "40 ms", "2.5 s", "-3 us" (4 significant digits).
+std::string format_seconds(double s) {
+  const double a = std::abs(s);
+  const char* unit = "s";
+  double v = s;
+  if (a > 0 && a < 1e-6) {
+    unit = "ns";
+    v = s * 1e9;
+  } else if (a > 0 && a < 1e-3) {
+    unit = "us";
+    v = s * 1e6;
+  } else if (a > 0 && a < 1) {
+    unit = "ms";
+    v = s * 1e3;
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, "%.4g %s", v, unit);
+  return text;
+}
+std::string format_seconds_ratio(double r) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g", r);
+  return text;
+}
+double rate_hz_of(double nominal_s) { return nominal_s > 0 ? 1.0 / nominal_s : 0.0; }
 
 }  // namespace
 
@@ -224,7 +254,11 @@ void TimingAccumulator::add(const TimeStamp& stamp, std::int64_t line) {
     const double dt_s = (step + (stamp.frac - prev_.frac)) / divisor_;
     ++intervals_;
     mean_all_ += (dt_s - mean_all_) / static_cast<double>(intervals_);
-    if (!(dt_s > 0)) ++non_increasing_;
+    if (!(dt_s > 0) && non_increasing_++ == 0) {
+      first_ni_row_ = samples_;
+      first_ni_line_ = line;
+      first_ni_step_s_ = dt_s;
+    }
     if (frozen_) {
       classify(classified_, nominal_s_, samples_, line, prev_s_, dt_s);
     } else {
@@ -248,11 +282,25 @@ double TimingAccumulator::median(std::vector<double> v) {
 }
 
 void TimingAccumulator::classify(Classified& c, double nominal_s, std::int64_t row,
-                                 std::int64_t line, double start_s, double dt_s) {
+                                 std::int64_t line, double start_s, double dt_s) const {
+  const bool gap = nominal_s > 0 && dt_s > kGapFactor * nominal_s;
+  if (policy_ == GapPolicy::split && (gap || !(dt_s > 0))) {
+    if (c.breaks.size() >= kMaxSegments) {
+      throw ParseError(file_, line, 0,
+                       "more than " + std::to_string(kMaxSegments) +
+                           " segments between gaps and non-increasing time stamps; the time "
+                           "column is not usable (check --time-column and --time-unit)");
+    }
+    c.breaks.push_back(row);
+  }
   if (!(dt_s > 0)) return;  // counted in non_increasing
-  if (nominal_s > 0 && dt_s > kGapFactor * nominal_s) {
+  if (gap) {
     ++c.gap_count;
     if (c.gaps.size() < kMaxStoredGaps) c.gaps.push_back({row, line, start_s, dt_s});
+    if (dt_s > c.largest_gap_s) {
+      c.largest_gap_s = dt_s;
+      c.largest_gap_line = line;
+    }
     return;
   }
   ++c.regular;  // Welford's update
@@ -276,6 +324,36 @@ void TimingAccumulator::freeze() {
 
 void TimingAccumulator::finish() {
   if (has_time_ && !frozen_) freeze();
+  if (!has_time_ || !(policy_ == GapPolicy::error || policy_ == GapPolicy::fill)) return;
+  const auto ms = [](double s) { return format_seconds(s); };
+  const bool gaps = policy_ == GapPolicy::error && classified_.gap_count > 0;
+  const bool backwards = non_increasing_ > 0;
+  if (!gaps && !backwards) return;
+  const Gap* first = gaps ? &classified_.gaps.front() : nullptr;
+  if (backwards && (!first || first_ni_row_ < first->row)) {
+    throw ParseError(
+        file_, first_ni_line_, 0,
+        std::string(first_ni_step_s_ == 0 ? "duplicated time stamp" : "time stamp goes backwards") +
+            " (step " + ms(first_ni_step_s_) + "), row " + std::to_string(first_ni_row_) + "; " +
+            std::to_string(non_increasing_) + " non-increasing stamp" +
+            (non_increasing_ == 1 ? "" : "s") + " in all" +
+            (classified_.gap_count > 0
+                 ? " and " + std::to_string(classified_.gap_count) + " gap(s)"
+                 : std::string()) +
+            "; use --gaps split to analyse the pieces apart (a logger restart), or fix the time "
+            "column (--time-column, --time-unit)");
+  }
+  throw ParseError(
+      file_, first->line, 0,
+      "time stamp gap of " + ms(first->length_s) + " (" +
+          format_seconds_ratio(first->length_s * rate_hz_of(nominal_s_)) +
+          " nominal intervals of " + ms(nominal_s_) + ") before row " +
+          std::to_string(first->row) + "; " + std::to_string(classified_.gap_count) + " gap" +
+          (classified_.gap_count == 1 ? "" : "s") + " in all, the largest " +
+          ms(classified_.largest_gap_s) + " at line " +
+          std::to_string(classified_.largest_gap_line) +
+          "; use --gaps split to analyse the contiguous segments apart, or --gaps fill to "
+          "interpolate the missing samples");
 }
 
 TimingReport TimingAccumulator::report() const {
@@ -304,7 +382,89 @@ TimingReport TimingAccumulator::report() const {
   r.jitter_s = c->regular > 1 ? std::sqrt(c->m2 / static_cast<double>(c->regular - 1)) : 0.0;
   r.gap_count = c->gap_count;
   r.gaps = c->gaps;
+  r.largest_gap_s = c->largest_gap_s;
+  r.largest_gap_line = c->largest_gap_line;
+  r.first_non_increasing_row = first_ni_row_;
+  r.first_non_increasing_line = first_ni_line_;
+  r.first_non_increasing_step_s = first_ni_step_s_;
+  if (policy_ == GapPolicy::split) {
+    r.segment_starts.reserve(c->breaks.size() + 1);
+    r.segment_starts.push_back(0);
+    r.segment_starts.insert(r.segment_starts.end(), c->breaks.begin(), c->breaks.end());
+  }
   return r;
 }
 
 }  // namespace sigmatau::detail
+
+namespace sigmatau {
+
+GapPolicy parse_gap_policy(std::string_view text) {
+  if (text == "report") return GapPolicy::report;
+  if (text == "error") return GapPolicy::error;
+  if (text == "split") return GapPolicy::split;
+  if (text == "fill") return GapPolicy::fill;
+  throw Error("unknown gap policy \"" + std::string(text) +
+              "\" (expected error, split, fill or report)");
+}
+
+NonFinitePolicy parse_nonfinite_policy(std::string_view text) {
+  if (text == "error") return NonFinitePolicy::error;
+  if (text == "skip") return NonFinitePolicy::skip_row;
+  throw Error("unknown non-finite policy \"" + std::string(text) + "\" (expected skip or error)");
+}
+
+std::int64_t fill_gaps(Log& log) {
+  using detail::format_seconds;
+  using detail::kGapFactor;
+  const std::string file = log.path == "-" ? "<stdin>" : log.path;
+  if (log.t_s.empty()) throw Error(file + ": --gaps fill needs a time column");
+  if (!(log.timing.rate_hz > 0)) {
+    throw Error(file + ": --gaps fill needs a sample rate measured from the time column");
+  }
+  const double nominal_s = 1.0 / log.timing.rate_hz;
+  const std::size_t n = log.t_s.size();
+  // First pass: count (and check) what would be inserted, so that nothing changes on error.
+  std::int64_t missing = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double dt = log.t_s[i] - log.t_s[i - 1];
+    if (!(dt > 0)) {
+      throw ParseError(file, 0, 0,
+                       "time stamp at row " + std::to_string(i) +
+                           " does not increase; --gaps fill cannot interpolate backwards "
+                           "(use --gaps split)");
+    }
+    if (dt > kGapFactor * nominal_s) {
+      missing += static_cast<std::int64_t>(std::llround(dt / nominal_s)) - 1;
+      if (missing > static_cast<std::int64_t>(n)) {
+        throw Error(file + ": --gaps fill would more than double the log (a gap of " +
+                    format_seconds(dt) + " before row " + std::to_string(i) +
+                    "); use --gaps split");
+      }
+    }
+  }
+  if (missing == 0) return 0;
+  const auto grow = [&](std::vector<double>& x) {
+    std::vector<double> out;
+    out.reserve(n + static_cast<std::size_t>(missing));
+    out.push_back(x[0]);
+    for (std::size_t i = 1; i < n; ++i) {
+      const double dt = log.t_s[i] - log.t_s[i - 1];
+      if (dt > kGapFactor * nominal_s) {
+        const auto k = std::llround(dt / nominal_s);  // intervals the gap spans
+        for (long long j = 1; j < k; ++j) {
+          const double w = static_cast<double>(j) / static_cast<double>(k);
+          out.push_back(x[i - 1] + w * (x[i] - x[i - 1]));
+        }
+      }
+      out.push_back(x[i]);
+    }
+    x.swap(out);
+  };
+  for (auto& channel : log.channels) grow(channel);
+  grow(log.t_s);  // last: the loops above read the original stamps
+  log.timing.filled_samples += missing;
+  return missing;
+}
+
+}  // namespace sigmatau

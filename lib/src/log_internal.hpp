@@ -70,13 +70,20 @@ bool parse_time_stamp(std::string_view field, TimeStamp& stamp);
 class TimingAccumulator {
  public:
   void start(bool has_time, TimeUnit unit);
+  /// The gap policy and the file name for its errors (the parsers call it from their
+  /// constructors; start() leaves it alone).
+  void set_policy(GapPolicy policy, const std::string& file) {
+    policy_ = policy;
+    file_ = file;
+  }
   /// Adds one time-stamped sample found on `line` (0 for none).
   void add(const TimeStamp& stamp, std::int64_t line);
   /// Adds `n` samples without time stamps.
   void add_untimed(std::int64_t n) { samples_ += n; }
   void add_skipped() { ++skipped_; }
   double seconds(const TimeStamp& stamp) const;
-  /// Call once at the end of the input: freezes the nominal interval.
+  /// Call once at the end of the input: freezes the nominal interval; under GapPolicy::error
+  /// (and ::fill, for non-increasing stamps) throws the ParseError described there.
   void finish();
   /// The report of everything added so far.
   TimingReport report() const;
@@ -90,13 +97,16 @@ class TimingAccumulator {
   struct Classified {
     std::int64_t gap_count = 0;
     std::vector<Gap> gaps;
+    double largest_gap_s = 0;
+    std::int64_t largest_gap_line = 0;
+    std::vector<std::int64_t> breaks;  // rows starting a segment (GapPolicy::split only)
     std::int64_t regular = 0;  // Welford over regular intervals
     double mean = 0;
     double m2 = 0;
   };
   static double median(std::vector<double> values);
-  static void classify(Classified& c, double nominal_s, std::int64_t row, std::int64_t line,
-                       double start_s, double dt_s);
+  void classify(Classified& c, double nominal_s, std::int64_t row, std::int64_t line,
+                double start_s, double dt_s) const;
   void freeze();
 
   bool has_time_ = false;
@@ -108,6 +118,11 @@ class TimingAccumulator {
   std::int64_t intervals_ = 0;
   double mean_all_ = 0;
   std::int64_t non_increasing_ = 0;
+  std::int64_t first_ni_row_ = -1;
+  std::int64_t first_ni_line_ = 0;
+  double first_ni_step_s_ = 0;
+  GapPolicy policy_ = GapPolicy::report;
+  std::string file_;
   bool frozen_ = false;
   double nominal_s_ = 0;
   std::vector<Interval> window_;

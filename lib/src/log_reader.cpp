@@ -109,7 +109,8 @@ const TimingReport& LogReader::timing() const {
 std::int64_t LogReader::bytes_read() const { return impl_->source.bytes_consumed(); }
 std::int64_t LogReader::total_bytes() const { return impl_->source.total_bytes(); }
 
-Log read_log(const LogOptions& options) {
+Log read_log(const LogOptions& options,
+             const std::function<void(std::int64_t, std::int64_t)>& progress) {
   LogReader reader(options);
   Log log;
   log.path = options.path;
@@ -121,6 +122,7 @@ Log read_log(const LogOptions& options) {
       log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
     }
     log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+    if (progress) progress(reader.bytes_read(), reader.total_bytes());
   }
   log.timing = reader.timing();
   if (log.channels.empty() || log.channels[0].empty()) {

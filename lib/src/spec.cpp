@@ -108,6 +108,8 @@ class Reader {
                   const std::vector<std::string_view>& allowed) const {
     std::set<std::string> seen;
     for (const auto& item : map) {
+      // A key that is itself a list or map (found by fuzzing) is a schema error, not a crash.
+      if (!item.first.IsScalar()) fail(item.first, prefix(where) + "found a non-text key, expected a field name");
       const std::string key = item.first.as<std::string>();
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         std::string list;

@@ -78,6 +78,7 @@ TextLog::TextLog(ByteSource& source, const LogOptions& options, std::size_t bloc
       nonfinite_(options.nonfinite),
       block_bytes_(block_bytes),
       buffer_(block_bytes + kMaxLineBytes + 1) {
+  timing_.set_policy(options.gaps, source_.name());
   begin_ = end_ = buffer_.data();
   while (!eof_ && end_ - begin_ < 3) refill();
   // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first field.

@@ -17,6 +17,7 @@
 /// Memory stays bounded: the reader holds one read buffer (default 4 MiB) plus one line.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,9 +35,27 @@ enum class NonFinitePolicy {
   skip_row,  ///< drop the whole row and count it in TimingReport::rows_skipped_nonfinite
 };
 
-/// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64". Throw Error otherwise.
+/// What to do with gaps in the time column (intervals > 1.5 nominal intervals) and with
+/// non-increasing (duplicated or backwards) stamps. Without a time column there is nothing to do.
+enum class GapPolicy {
+  report,  ///< count and report them in TimingReport only (LogOptions default for now; the CLI's
+           ///< --gaps default is meant to become `error`)
+  error,   ///< ParseError once the input is read, at the line of the first gap or non-increasing
+           ///< stamp (whichever comes first), with its length, the counts, and the options to use
+  split,   ///< TimingReport::segment_starts lists where the contiguous segments begin (every gap
+           ///< and every non-increasing stamp starts one); estimators compute each segment's
+           ///< Allan sums apart and add them, so no difference spans a gap
+  fill,    ///< read_log inserts linearly interpolated samples into each gap (counted in
+           ///< TimingReport::filled_samples); non-increasing stamps are an error as under `error`.
+           ///< LogReader alone streams the rows as read and only reports the gaps.
+};
+
+/// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64"; "report" | "error" | "split" |
+/// "fill"; "skip" | "error". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
 BinaryFormat parse_binary_format(std::string_view text);
+GapPolicy parse_gap_policy(std::string_view text);
+NonFinitePolicy parse_nonfinite_policy(std::string_view text);
 
 struct LogOptions {
   std::string path;                  ///< file, or "-" for stdin; gzip detected by magic bytes
@@ -47,6 +66,7 @@ struct LogOptions {
   std::string time_column;           ///< header name or 0-based index; empty: no time column
   TimeUnit time_unit = TimeUnit::s;
   NonFinitePolicy nonfinite = NonFinitePolicy::error;
+  GapPolicy gaps = GapPolicy::report;  ///< see GapPolicy (needs a time column to do anything)
   // Raw binary input (interleaved samples, channel-major per row):
   BinaryFormat binary = BinaryFormat::none;
   int binary_channels = 0;
@@ -90,6 +110,18 @@ struct TimingReport {
   std::int64_t gap_count = 0;       ///< all intervals > 1.5 x nominal (the list below is capped)
   std::vector<Gap> gaps;            ///< the first 1000 gaps, in file order
   std::int64_t rows_skipped_nonfinite = 0;  ///< rows dropped by NonFinitePolicy::skip_row
+  // Locations (0 / -1 when there is none):
+  std::int64_t first_non_increasing_row = -1;   ///< 0-based row of the first stamp <= its previous
+  std::int64_t first_non_increasing_line = 0;   ///< its 1-based line (text input)
+  double first_non_increasing_step_s = 0;       ///< its interval [s] (<= 0)
+  double largest_gap_s = 0;                     ///< longest gap [s] (0 without gaps)
+  std::int64_t largest_gap_line = 0;            ///< its line (the sample after it)
+  /// GapPolicy::split: 0-based first row of each contiguous segment, ascending, starting with 0
+  /// (one entry when there is no break); empty under the other policies. Segment k is rows
+  /// [segment_starts[k], segment_starts[k+1]) (the last ends at `samples`). Capped at 10^6
+  /// segments (ParseError beyond: such a log has no usable contiguous stretch).
+  std::vector<std::int64_t> segment_starts;
+  std::int64_t filled_samples = 0;  ///< GapPolicy::fill: samples interpolated by fill_gaps
 };
 
 /// Streaming reader. The constructor opens the input and reads up to the first data row (so the
@@ -135,8 +167,19 @@ struct Log {
 
 /// Reads everything through LogReader. Throws like LogReader (an input without data rows is
 /// ParseError "no data rows"), and Error "no samples" when no row is left after skipping rows
-/// under NonFinitePolicy::skip_row.
-Log read_log(const LogOptions& options);
+/// under NonFinitePolicy::skip_row. `progress(bytes_read, total_bytes)` is called after each
+/// block when set (total -1 when unknown, e.g. stdin).
+Log read_log(const LogOptions& options,
+             const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+
+/// GapPolicy::fill on a log in memory: inserts into every gap of > 1.5 nominal intervals
+/// (nominal = 1 / log.timing.rate_hz) round(dt / nominal) - 1 samples, with time stamps and every
+/// channel interpolated linearly between the samples around the gap; adds the count to
+/// log.timing.filled_samples and returns it. read_log calls it under GapPolicy::fill. Throws
+/// ParseError when a stamp does not increase (nothing to interpolate), and Error when the log has
+/// no time column or rate, or when filling would more than double the log (a stamp typo such as a
+/// 1 h jump in a 10 min log: use split).
+std::int64_t fill_gaps(Log& log);
 
 /// The sample rate to use [Hz]: `rate_hz` when given (must be > 0 and finite), else the rate
 /// measured from the time column; throws Error "no --rate and no time column" otherwise, and

@@ -1,0 +1,264 @@
+// Plausibility checks on channels in memory (see sigmatau/data_checks.hpp for the thresholds and
+// their reasons).
+//
+// Glossary: run = maximal sequence of consecutive equal values; raw = value as written in the
+// file = SI value / to_si; f = a candidate unit's factor to SI.
+#include "sigmatau/data_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau {
+namespace {
+
+/// Standard gravity [m/s^2] (CGPM 1901; the value every "g" unit uses).
+constexpr double kStandardGravity = 9.80665;
+/// Largest plausible mean rate of a static gyro [rad/s]: see data_checks.hpp.
+constexpr double kMaxStaticGyroRate = 0.5;
+/// Plausible band of a static accelerometer's mean norm [g]: see data_checks.hpp.
+constexpr double kAccelNormLow = 0.75;
+constexpr double kAccelNormHigh = 1.25;
+/// Two factors within this relative distance are the same unit (deg/s typed two ways).
+constexpr double kSameFactor = 1e-9;
+
+struct Unit {
+  const char* name;
+  double to_si;
+};
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr Unit kRateUnits[] = {
+    {"rad/s", 1.0}, {"deg/s", kDeg}, {"mrad/s", 1e-3}, {"deg/h", kDeg / 3600.0}};
+constexpr Unit kAccelUnits[] = {
+    {"m/s^2", 1.0}, {"g", kStandardGravity}, {"mg", kStandardGravity * 1e-3}, {"ft/s^2", 0.3048}};
+
+std::string format_value(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+DataWarning make_warning(DataWarningKind kind, std::string channel, double value) {
+  DataWarning w;
+  w.kind = kind;
+  w.channel = std::move(channel);
+  w.value = value;
+  return w;
+}
+
+/// Calls `on_run(start, length, value)` for every run of finite equal values of >= min_run.
+template <class OnRun>
+void for_each_run(std::span<const double> x, std::int64_t min_run, OnRun on_run) {
+  const auto n = static_cast<std::int64_t>(x.size());
+  std::int64_t i = 0;
+  while (i < n) {
+    std::int64_t j = i + 1;
+    const double v = x[static_cast<std::size_t>(i)];
+    while (j < n && x[static_cast<std::size_t>(j)] == v) ++j;  // NaN != NaN: never a run
+    if (j - i >= min_run) on_run(i, j - i, v);
+    i = j;
+  }
+}
+
+void add_run(DataWarning& w, std::int64_t start, std::int64_t length) {
+  if (w.runs == 0) {
+    w.first_row = start;
+    w.first_rows = length;
+  }
+  if (length > w.longest_rows) {
+    w.longest_row = start;
+    w.longest_rows = length;
+  }
+  ++w.runs;
+  w.rows_flagged += length;
+}
+
+std::string run_summary(const DataWarning& w, std::int64_t min_run) {
+  std::string s = w.channel + ": " + std::to_string(w.runs) + (w.runs == 1 ? " run" : " runs") +
+                  " of >= " + std::to_string(min_run) + " identical samples";
+  return s;
+}
+
+std::string run_location(const DataWarning& w) {
+  std::string s = ", first at row " + std::to_string(w.first_row) + " (" +
+                  std::to_string(w.first_rows) + " rows)";
+  if (w.runs > 1) {
+    s += ", longest at row " + std::to_string(w.longest_row) + " (" +
+         std::to_string(w.longest_rows) + " rows); " + std::to_string(w.rows_flagged) +
+         " rows in all";
+  }
+  return s;
+}
+
+void check_min_run(std::int64_t min_run, const char* what) {
+  if (!(min_run >= 2)) {
+    throw Error(std::string(what) + " run threshold must be >= 2 rows, got " +
+                std::to_string(min_run));
+  }
+}
+
+/// Checks 1..max_axes equal-length non-empty axes; returns the per-axis means of the raw values.
+std::vector<double> raw_means(const std::vector<std::span<const double>>& axes,
+                              const std::vector<std::string>& names, double to_si,
+                              std::size_t min_axes, std::size_t max_axes, const char* what) {
+  if (!(axes.size() >= min_axes && axes.size() <= max_axes) || names.size() != axes.size()) {
+    throw Error(std::string(what) + " unit check: needs " + std::to_string(min_axes) + ".." +
+                std::to_string(max_axes) + " axes with one name each, got " +
+                std::to_string(axes.size()) + " axes and " + std::to_string(names.size()) +
+                " names");
+  }
+  if (!(to_si > 0 && std::isfinite(to_si))) {
+    throw Error(std::string(what) + " unit check: the unit factor must be > 0");
+  }
+  std::vector<double> means;
+  for (const auto& a : axes) {
+    if (a.empty() || a.size() != axes[0].size()) {
+      throw Error(std::string(what) + " unit check: the axes must be non-empty and equally long");
+    }
+    double sum = 0;
+    for (const double v : a) sum += v;
+    means.push_back(sum / static_cast<double>(a.size()) / to_si);
+  }
+  return means;
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : "+") + n;
+  return s;
+}
+
+/// The first candidate unit (other than the declared one), nearest the declared factor in
+/// log scale, for which raw * f is plausible.
+template <std::size_t N, class Plausible>
+std::string likely_unit(const Unit (&units)[N], double to_si, double raw, Plausible plausible) {
+  std::vector<const Unit*> order;
+  for (const Unit& u : units) {
+    if (std::abs(u.to_si / to_si - 1.0) > kSameFactor) order.push_back(&u);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](const Unit* a, const Unit* b) {
+    return std::abs(std::log(a->to_si / to_si)) < std::abs(std::log(b->to_si / to_si));
+  });
+  for (const Unit* u : order) {
+    if (plausible(raw * u->to_si)) return u->name;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string to_string(DataWarningKind kind) {
+  switch (kind) {
+    case DataWarningKind::saturation:
+      return "saturation";
+    case DataWarningKind::stuck:
+      return "stuck";
+    case DataWarningKind::unit:
+      return "unit";
+  }
+  return "unknown";
+}
+
+std::vector<DataWarning> check_saturation(std::span<const double> values,
+                                          const std::string& channel,
+                                          const DataCheckOptions& options) {
+  check_min_run(options.saturation_min_run, "saturation");
+  std::vector<DataWarning> out;
+  double lo = INFINITY;
+  double hi = -INFINITY;
+  for (const double v : values) {
+    if (!std::isfinite(v)) continue;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (!(lo < hi)) return out;  // empty, all non-finite, or constant
+  DataWarning at_lo = make_warning(DataWarningKind::saturation, channel, lo);
+  DataWarning at_hi = make_warning(DataWarningKind::saturation, channel, hi);
+  for_each_run(values, options.saturation_min_run, [&](std::int64_t s, std::int64_t n, double v) {
+    if (v == lo) add_run(at_lo, s, n);
+    if (v == hi) add_run(at_hi, s, n);
+  });
+  for (DataWarning* w : {&at_lo, &at_hi}) {
+    if (w->runs == 0) continue;
+    w->message = run_summary(*w, options.saturation_min_run) + " at the channel " +
+                 (w == &at_lo ? "minimum " : "maximum ") + format_value(w->value) +
+                 " (saturation: the signal was clipped at the sensor's range)" + run_location(*w);
+    out.push_back(std::move(*w));
+  }
+  return out;
+}
+
+std::optional<DataWarning> check_stuck(std::span<const double> values, const std::string& channel,
+                                       const DataCheckOptions& options) {
+  check_min_run(options.stuck_min_run, "stuck-sensor");
+  DataWarning w = make_warning(DataWarningKind::stuck, channel, 0.0);
+  for_each_run(values, options.stuck_min_run, [&](std::int64_t s, std::int64_t n, double v) {
+    if (w.runs == 0 || n > w.longest_rows) w.value = v;
+    add_run(w, s, n);
+  });
+  if (w.runs == 0) return std::nullopt;
+  w.message = run_summary(w, options.stuck_min_run) + " (stuck sensor?), longest value " +
+              format_value(w.value) + run_location(w);
+  return w;
+}
+
+std::vector<DataWarning> check_runs(std::span<const double> values, const std::string& channel,
+                                    const DataCheckOptions& options) {
+  std::vector<DataWarning> out = check_saturation(values, channel, options);
+  if (auto w = check_stuck(values, channel, options)) out.push_back(std::move(*w));
+  return out;
+}
+
+std::optional<DataWarning> check_gyro_unit(const std::vector<std::span<const double>>& axes_si,
+                                           const std::vector<std::string>& names,
+                                           const std::string& declared_unit, double to_si) {
+  const std::vector<double> means = raw_means(axes_si, names, to_si, 1, 3, "gyro");
+  double raw = 0;
+  for (const double m : means) raw += m * m;
+  raw = std::sqrt(raw);
+  const double si = raw * to_si;
+  if (!(si > kMaxStaticGyroRate)) return std::nullopt;  // NaN means cannot be judged: no warning
+  DataWarning w = make_warning(DataWarningKind::unit, join_names(names), si);
+  const auto plausible = [](double rate) { return rate <= kMaxStaticGyroRate; };
+  w.likely_unit = likely_unit(kRateUnits, to_si, raw, plausible);
+  if (w.likely_unit.empty()) w.likely_unit = "raw counts (LSB)";
+  w.message = w.channel + ": a static gyro reading a mean rate of " + format_value(raw) + " " +
+              declared_unit + " (" + format_value(si) +
+              " rad/s) is implausible (more than " + format_value(kMaxStaticGyroRate) +
+              " rad/s); the data look like " + w.likely_unit + ", not " + declared_unit;
+  return w;
+}
+
+std::optional<DataWarning> check_accel_unit(const std::vector<std::span<const double>>& axes_si,
+                                            const std::vector<std::string>& names,
+                                            const std::string& declared_unit, double to_si) {
+  raw_means(axes_si, names, to_si, 3, 3, "accelerometer");  // validates
+  const std::size_t n = axes_si[0].size();
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sum += std::hypot(axes_si[0][i], axes_si[1][i], axes_si[2][i]);
+  }
+  const double si = sum / static_cast<double>(n);
+  const double in_g = si / kStandardGravity;
+  if (in_g >= kAccelNormLow && in_g <= kAccelNormHigh) return std::nullopt;
+  if (!std::isfinite(in_g)) return std::nullopt;  // non-finite data are the reader's business
+  DataWarning w = make_warning(DataWarningKind::unit, join_names(names), si);
+  const auto plausible = [](double a) {
+    const double g = a / kStandardGravity;
+    return g >= kAccelNormLow && g <= kAccelNormHigh;
+  };
+  const double raw = si / to_si;
+  w.likely_unit = likely_unit(kAccelUnits, to_si, raw, plausible);
+  w.message = w.channel + ": a static accelerometer reading a mean norm of " + format_value(raw) +
+              " " + declared_unit + " (" + format_value(in_g) + " g) is not near 1 g; " +
+              (w.likely_unit.empty() ? std::string("no common unit explains it (is it static?)")
+                                     : "the data look like " + w.likely_unit + ", not " +
+                                           declared_unit);
+  return w;
+}
+
+}  // namespace sigmatau
