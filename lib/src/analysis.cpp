@@ -13,6 +13,8 @@
 #include <fstream>
 
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/data_checks.hpp"
+#include "sigmatau/units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/filter_export.hpp"
 #include "sigmatau/fit.hpp"
@@ -215,6 +217,35 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   results["created_utc"] = options.created_utc;
   results["confidence"] = options.confidence;
   json warnings = json::array();
+
+  // Data checks on the log as read: saturation and stuck runs per channel, and whether each
+  // triad's magnitude is plausible for its declared unit (a static log is assumed).
+  try {
+    std::array<std::vector<std::span<const double>>, 2> triad_axes;
+    std::array<std::vector<std::string>, 2> triad_names;
+    std::array<std::string, 2> triad_unit;
+    for (std::size_t c = 0; c < input.channels.size(); ++c) {
+      const auto& channel = input.channels[c];
+      for (const auto& w : check_runs(channel.values, channel.name)) warnings.push_back(w.message);
+      if (!channel.role || input.kind != DataKind::rate) continue;
+      const int s = channel.role->sensor == Sensor::gyro ? 0 : 1;
+      triad_axes[s].emplace_back(channel.values);
+      triad_names[s].push_back(channel.name);
+      triad_unit[s] = c < input.input_units.size() ? input.input_units[c] : "";
+    }
+    for (int s = 0; s < 2; ++s) {
+      if (triad_axes[s].empty()) continue;
+      const std::string unit = triad_unit[s].empty() ? (s == 0 ? "rad/s" : "m/s^2") : triad_unit[s];
+      const double to_si = parse_unit(unit).factor;
+      const auto w = s == 0 ? check_gyro_unit(triad_axes[s], triad_names[s], unit, to_si)
+                            : (triad_axes[s].size() == 3
+                                   ? check_accel_unit(triad_axes[s], triad_names[s], unit, to_si)
+                                   : std::nullopt);
+      if (w) warnings.push_back(w->message);
+    }
+  } catch (const Error& e) {
+    warnings.push_back(std::string("data checks skipped: ") + e.what());
+  }
 
   // Trim the warm-up.
   const std::int64_t samples_in = static_cast<std::int64_t>(input.channels.front().values.size());
