@@ -141,8 +141,10 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
     const std::int64_t half = big_p / 2;
     for (auto& v : c) v.assign(static_cast<std::size_t>(half + 1), 0.0);
     const std::vector<double> table = sine_table(big_p);
-    const auto sin_of = [&](std::int64_t p, std::int64_t mult) {
-      return table[static_cast<std::size_t>((p * mult) % (2 * big_p))];
+    // Captured by value: a lambda may not capture a structured binding before C++20's P1091
+    // (clang 14 refuses it; the fuzz build uses clang).
+    const auto sin_of = [&table, period = big_p](std::int64_t p, std::int64_t mult) {
+      return table[static_cast<std::size_t>((p * mult) % (2 * period))];
     };
     std::vector<double> sines(static_cast<std::size_t>(half + 1)), nums(static_cast<std::size_t>(half + 1));
     for (const auto& [a, b] : pairs) {
