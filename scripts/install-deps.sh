@@ -13,6 +13,8 @@ packages=(
   libyaml-cpp-dev                             # data-sheet files, filter YAML exports
   nlohmann-json3-dev                          # machine-readable results
   zlib1g-dev                                  # gzip-compressed logs
+  libbz2-dev liblz4-dev libzstd-dev           # ROS bag chunk compression (bz2, lz4, zstd)
+  libsqlite3-dev                              # rosbag2 .db3 storage
   libbenchmark-dev                            # bench/
   gnuplot-nox                                 # plots
 )

@@ -15,6 +15,15 @@
 /// - Limits (for bounded memory on hostile input): a line holds at most 1 MiB and at most 100000
 ///   fields; longer lines or wider rows are a ParseError.
 /// Memory stays bounded: the reader holds one read buffer (default 4 MiB) plus one line.
+///
+/// ROS bags are read without ROS: a ROS 1 bag (v2.0, chunks uncompressed, bz2 or lz4), a ROS 2
+/// MCAP file (chunks uncompressed, zstd or lz4; messages CDR or ROS 1 encoded), a rosbag2 SQLite
+/// file (.db3, CDR little or big endian, zstd per message), or a rosbag2 folder holding
+/// metadata.yaml and its .db3/.mcap files. They are recognised by their magic bytes or extension
+/// (or by being a folder with metadata.yaml). A bag yields the sensor_msgs/Imu messages of one
+/// topic as channels gx, gy, gz (angular_velocity [rad/s]) and ax, ay, az (linear_acceleration
+/// [m/s^2]) with a time column from header.stamp (or the receive time, LogOptions::stamp).
+/// Memory stays bounded by one chunk (a few MiB in practice) plus the reorder window.
 
 #include <cstdint>
 #include <functional>
@@ -50,12 +59,18 @@ enum class GapPolicy {
            ///< LogReader alone streams the rows as read and only reports the gaps.
 };
 
+/// Time stamp of a bag message: the message's own header.stamp (when the sensor sampled) or the
+/// time the recorder received it.
+enum class BagStamp { header, receive };
+
 /// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64"; "report" | "error" | "split" |
 /// "fill"; "skip" | "error". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
 BinaryFormat parse_binary_format(std::string_view text);
 GapPolicy parse_gap_policy(std::string_view text);
 NonFinitePolicy parse_nonfinite_policy(std::string_view text);
+/// "header" | "receive". Throws Error otherwise.
+BagStamp parse_bag_stamp(std::string_view text);
 
 struct LogOptions {
   std::string path;                  ///< file, or "-" for stdin; gzip detected by magic bytes
@@ -75,7 +90,30 @@ struct LogOptions {
   /// Size of each read [bytes]; 0 means the default (4 MiB). Small values exist for tests of rows
   /// split across buffer boundaries; memory use is about this plus the 1 MiB line limit.
   std::int64_t read_buffer_bytes = 0;
+  // ROS bags (see the file comment). A bag always has a time column: time_column must stay empty
+  // and time_unit is not used; `columns` picks among gx, gy, gz, ax, ay, az (default: all six).
+  std::string topic;  ///< sensor_msgs/Imu topic; empty: the bag's only sensor_msgs/Imu topic
+  BagStamp stamp = BagStamp::header;  ///< which time stamp is the time column
+  /// Out-of-order stamps are sorted within this many messages [messages, >= 0]: a message may
+  /// arrive up to this many messages after one with a later stamp. A stamp that is later still
+  /// is a ParseError naming its location. Memory: about 80 bytes per message of window.
+  std::int64_t reorder_window = 10000;
 };
+
+/// A topic of a bag, as listed by list_bag_topics and in "which topic?" errors.
+struct BagTopic {
+  std::string name;           ///< e.g. "/imu/data"
+  std::string type;           ///< e.g. "sensor_msgs/msg/Imu" (ROS 2) or "sensor_msgs/Imu" (ROS 1)
+  std::int64_t messages = -1; ///< message count, -1 when the bag does not say
+};
+
+/// Whether LogReader reads `path` as a ROS bag (magic bytes, extension, or a folder holding
+/// metadata.yaml). "-" (stdin) is never a bag.
+bool is_bag_path(const std::string& path);
+
+/// The topics of a bag with their types and message counts (from the bag's index or summary
+/// when it has one, else by reading it through). Throws Error / ParseError like LogReader.
+std::vector<BagTopic> list_bag_topics(const std::string& path);
 
 /// A block of rows, stored per channel: values[c][r].
 struct SampleBlock {
@@ -122,6 +160,11 @@ struct TimingReport {
   /// segments (ParseError beyond: such a log has no usable contiguous stretch).
   std::vector<std::int64_t> segment_starts;
   std::int64_t filled_samples = 0;  ///< GapPolicy::fill: samples interpolated by fill_gaps
+  /// ROS bags: messages that arrived after a message with a later stamp and were put back in
+  /// order within LogOptions::reorder_window, and the largest such lateness [s].
+  std::int64_t reordered_samples = 0;
+  double max_reorder_s = 0;
+  std::string bag_topic;  ///< ROS bags: the topic read (empty for other inputs)
 };
 
 /// Streaming reader. The constructor opens the input and reads up to the first data row (so the

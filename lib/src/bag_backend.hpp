@@ -1,0 +1,51 @@
+#pragma once
+// Internal: what the three bag readers (rosbag1.cpp, mcap.cpp, rosbag2_sqlite.cpp) offer to
+// bag_log.cpp, which picks the topic, restores stamp order and fills SampleBlocks.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cdr.hpp"
+#include "sigmatau/log_reader.hpp"
+
+namespace sigmatau::detail {
+
+/// ROS 1 and ROS 2 names of the one message type read.
+constexpr std::string_view kRos1ImuType = "sensor_msgs/Imu";
+constexpr std::string_view kRos2ImuType = "sensor_msgs/msg/Imu";
+inline bool is_imu_type(std::string_view type) {
+  return type == kRos1ImuType || type == kRos2ImuType;
+}
+
+/// One bag file (or a rosbag2 folder of them) delivering the IMU messages of one topic.
+class BagBackend {
+ public:
+  virtual ~BagBackend() = default;
+  /// The topics in the bag with their types; message counts when the bag states them, or when
+  /// `need_counts` (which may read the whole bag), else -1.
+  virtual std::vector<BagTopic> topics(bool need_counts) = 0;
+  /// Reads only `topic` from now on. false when the bag has no such topic; ParseError when its
+  /// type is not sensor_msgs/Imu, naming where the bag declares it.
+  virtual bool select(const std::string& topic) = 0;
+  /// The next message of the selected topic in file order (header_ns, receive_ns, values,
+  /// location); false at the end. ParseError on corrupt data or a message that is no Imu.
+  virtual bool next(ImuSample& sample) = 0;
+  virtual std::int64_t bytes_read() const = 0;
+  virtual std::int64_t total_bytes() const = 0;
+};
+
+std::unique_ptr<BagBackend> open_ros1_bag(const std::string& path);
+std::unique_ptr<BagBackend> open_mcap(const std::string& path);
+std::unique_ptr<BagBackend> open_rosbag2_sqlite(const std::string& path);
+
+/// ParseError "<where>: topic <topic> has type <type>, expected sensor_msgs/Imu ...".
+[[noreturn]] void throw_wrong_type(const std::string& file, const std::string& where,
+                                   const std::string& topic, const std::string& type);
+/// ParseError "<where>: <n>-byte message on <topic> is not a sensor_msgs/Imu: <reason>".
+[[noreturn]] void throw_bad_message(const std::string& file, const std::string& where,
+                                    const std::string& topic, std::size_t n,
+                                    const DecodeError& error);
+
+}  // namespace sigmatau::detail
