@@ -1,9 +1,11 @@
-// LogReader: opens the input (file, stdin, gzip), hands it to the text or binary parser and
-// accumulates the timing report. The parsers live in text_log.cpp and binary_log.cpp.
+// LogReader: opens the input (file, stdin, gzip, or a ROS bag), hands it to the text, binary or
+// bag reader and accumulates the timing report. The readers live in text_log.cpp, binary_log.cpp
+// and bag_log.cpp.
 #include "sigmatau/log_reader.hpp"
 
 #include <cmath>
 
+#include "bag_log.hpp"
 #include "binary_log.hpp"
 #include "byte_source.hpp"
 #include "log_internal.hpp"
@@ -37,16 +39,23 @@ BinaryFormat parse_binary_format(std::string_view text) {
 }
 
 struct LogReader::Impl {
-  detail::ByteSource source;
+  std::unique_ptr<detail::ByteSource> source;  // text and binary input
   detail::TimingAccumulator timing;
   std::unique_ptr<detail::TextLog> text;
   std::unique_ptr<detail::BinaryLog> binary;
+  std::unique_ptr<detail::BagLog> bag;
   const detail::ColumnSelection* selection = nullptr;
   bool finished = false;
   mutable bool report_stale = true;
   mutable TimingReport report;
 
-  explicit Impl(const LogOptions& options) : source(options.path) {
+  explicit Impl(const LogOptions& options) {
+    if (is_bag_path(options.path)) {
+      bag = std::make_unique<detail::BagLog>(options, timing);
+      selection = &bag->selection();
+      return;
+    }
+    source = std::make_unique<detail::ByteSource>(options.path);
     if (!(options.read_buffer_bytes >= 0 && options.read_buffer_bytes <= kMaxBufferBytes)) {
       throw Error("read_buffer_bytes must be in 0.." + std::to_string(kMaxBufferBytes) + ", got " +
                   std::to_string(options.read_buffer_bytes));
@@ -55,10 +64,10 @@ struct LogReader::Impl {
                                          ? static_cast<std::size_t>(options.read_buffer_bytes)
                                          : detail::kDefaultBufferBytes;
     if (options.binary != BinaryFormat::none) {
-      binary = std::make_unique<detail::BinaryLog>(source, options, buffer_bytes, timing);
+      binary = std::make_unique<detail::BinaryLog>(*source, options, buffer_bytes, timing);
       selection = &binary->selection();
     } else {
-      text = std::make_unique<detail::TextLog>(source, options, buffer_bytes, timing);
+      text = std::make_unique<detail::TextLog>(*source, options, buffer_bytes, timing);
       selection = &text->selection();
     }
     timing.start(selection->has_time, options.time_unit);
@@ -87,8 +96,9 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
   block.t_s.clear();
   if (m.selection->has_time) block.t_s.reserve(reserve);
   if (m.finished) return false;
-  const std::int64_t rows =
-      m.text ? m.text->read_rows(block, max_rows) : m.binary->read_rows(block, max_rows);
+  const std::int64_t rows = m.bag    ? m.bag->read_rows(block, max_rows)
+                            : m.text ? m.text->read_rows(block, max_rows)
+                                     : m.binary->read_rows(block, max_rows);
   m.report_stale = true;
   if (rows == 0) {
     m.finished = true;
@@ -101,13 +111,22 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
 const TimingReport& LogReader::timing() const {
   if (impl_->report_stale) {
     impl_->report = impl_->timing.report();
+    if (impl_->bag) {
+      impl_->report.reordered_samples = impl_->bag->reordered_samples();
+      impl_->report.max_reorder_s = impl_->bag->max_reorder_s();
+      impl_->report.bag_topic = impl_->bag->topic();
+    }
     impl_->report_stale = false;
   }
   return impl_->report;
 }
 
-std::int64_t LogReader::bytes_read() const { return impl_->source.bytes_consumed(); }
-std::int64_t LogReader::total_bytes() const { return impl_->source.total_bytes(); }
+std::int64_t LogReader::bytes_read() const {
+  return impl_->bag ? impl_->bag->bytes_read() : impl_->source->bytes_consumed();
+}
+std::int64_t LogReader::total_bytes() const {
+  return impl_->bag ? impl_->bag->total_bytes() : impl_->source->total_bytes();
+}
 
 Log read_log(const LogOptions& options,
              const std::function<void(std::int64_t, std::int64_t)>& progress) {

@@ -1,0 +1,301 @@
+// ROS bags behind LogReader: backend choice, topic choice, the reorder window, SampleBlock rows.
+//
+// Reorder window (W = LogOptions::reorder_window messages): arriving messages go into a min-heap
+// on (stamp, arrival number); once it holds W + 1 messages the smallest is delivered. A message
+// whose stamp is below the last one delivered came too late to be put back in order: ParseError
+// naming its location. A stamp below the largest seen so far counts as reordered (and its
+// lateness in max_reorder_s). Equal stamps keep their arrival order (the arrival number breaks
+// ties), so duplicates reach the TimingAccumulator as duplicates.
+#include "bag_log.hpp"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau::detail {
+namespace {
+
+constexpr std::string_view kRos1Magic = "#ROSBAG V2.0";
+/// MCAP magic (mcap.dev/spec): 0x89 "MCAP" '0' "\r\n".
+constexpr std::string_view kMcapMagic = "\x89MCAP0\r\n";
+/// SQLite file header (sqlite.org/fileformat.html, section 1.3.1): "SQLite format 3" and a NUL.
+constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
+/// The six channels of a sensor_msgs/Imu, in ImuSample order (gyro[0..2], accel[0..2]).
+constexpr const char* kChannelNames[6] = {"gx", "gy", "gz", "ax", "ay", "az"};
+
+enum class Kind { none, ros1, mcap, sqlite, folder };
+
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Kind kind_of(const std::string& path) {
+  if (path.empty() || path == "-") return Kind::none;
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) {
+    std::ifstream meta(path + "/metadata.yaml");
+    return meta.good() ? Kind::folder : Kind::none;
+  }
+  char head[16] = {};
+  std::streamsize got = 0;
+  if (exists && S_ISREG(st.st_mode)) {  // never read from a pipe: its bytes would be lost
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      in.read(head, sizeof head);
+      got = in.gcount();
+    }
+  }
+  const std::string_view start(head, static_cast<std::size_t>(got));
+  if (start.substr(0, kRos1Magic.size()) == kRos1Magic) return Kind::ros1;
+  if (start.substr(0, kMcapMagic.size()) == kMcapMagic) return Kind::mcap;
+  if (start == kSqliteMagic) return Kind::sqlite;
+  if (ends_with(path, ".bag")) return Kind::ros1;
+  if (ends_with(path, ".mcap")) return Kind::mcap;
+  if (ends_with(path, ".db3")) return Kind::sqlite;
+  return Kind::none;
+}
+
+std::string format_count(std::int64_t n) {
+  return n < 0 ? std::string("count unknown") : std::to_string(n) + (n == 1 ? " message" : " messages");
+}
+
+/// "/imu/data (sensor_msgs/Imu, 1200 messages), /tf (tf2_msgs/TFMessage, 40 messages)".
+std::string topic_list(const std::vector<BagTopic>& topics) {
+  if (topics.empty()) return "none";
+  std::string out;
+  for (const BagTopic& t : topics) {
+    if (!out.empty()) out += ", ";
+    out += t.name + " (" + t.type + ", " + format_count(t.messages) + ")";
+  }
+  return out;
+}
+
+std::string location(const ImuSample& s) {
+  if (s.id >= 0) return "message with row id " + std::to_string(s.id);
+  return "message at byte offset " + std::to_string(s.offset) +
+         " (of its record or compressed chunk)";
+}
+
+std::string format_ns(std::int64_t ns) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.9g s", static_cast<double>(ns) * 1e-9);
+  return text;
+}
+
+/// Min-heap order on (key, seq): std::push_heap keeps the largest first, so compare reversed.
+struct Later {
+  template <class P>
+  bool operator()(const P& a, const P& b) const {
+    return a.key_ns != b.key_ns ? a.key_ns > b.key_ns : a.seq > b.seq;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<BagBackend> open_bag(const std::string& path) {
+  switch (kind_of(path)) {
+    case Kind::ros1:
+      return open_ros1_bag(path);
+    case Kind::mcap:
+      return open_mcap(path);
+    case Kind::sqlite:
+      return open_rosbag2_sqlite(path);
+    case Kind::folder:
+      throw Error(path + ": a rosbag2 folder is not read yet; give one of its .db3 or .mcap "
+                         "files instead");
+    case Kind::none:
+      break;
+  }
+  throw Error(path + ": not a ROS bag (no ROS 1 bag, MCAP or SQLite magic bytes, no .bag, .mcap "
+                     "or .db3 extension, not a folder with metadata.yaml)");
+}
+
+[[noreturn]] void throw_wrong_type(const std::string& file, const std::string& where,
+                                   const std::string& topic, const std::string& type) {
+  throw ParseError(file, 0, 0,
+                   where + ": topic " + topic + " has type " + type +
+                       ", expected sensor_msgs/Imu (choose an Imu topic with --topic)");
+}
+
+[[noreturn]] void throw_bad_message(const std::string& file, const std::string& where,
+                                    const std::string& topic, std::size_t n,
+                                    const DecodeError& error) {
+  std::string message = where + ": " + std::to_string(n) + "-byte message on " + topic +
+                        " is not a sensor_msgs/Imu: " + (error.reason ? error.reason : "undecodable");
+  if (error.expected > 0) message += " (expected " + std::to_string(error.expected) + " bytes)";
+  throw ParseError(file, 0, 0, message);
+}
+
+BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
+    : file_(options.path), timing_(timing), nonfinite_(options.nonfinite), stamp_(options.stamp) {
+  if (!options.time_column.empty()) {
+    throw Error(file_ + ": a ROS bag has its own time stamps; drop the time column (\"" +
+                options.time_column + "\") and choose the stamp with --stamp header|receive");
+  }
+  if (options.binary != BinaryFormat::none || options.skip_bytes != 0) {
+    throw Error(file_ + ": the binary options (--binary, --channels, --skip-bytes) do not apply "
+                        "to a ROS bag");
+  }
+  if (!(options.reorder_window >= 0 && options.reorder_window <= kMaxReorderWindow)) {
+    throw Error("reorder window must be in 0.." + std::to_string(kMaxReorderWindow) +
+                " messages, got " + std::to_string(options.reorder_window));
+  }
+  window_ = static_cast<std::size_t>(options.reorder_window);
+
+  // Channels first: a typo is reported before the bag is read.
+  const std::vector<std::string> wanted =
+      options.columns.empty() ? std::vector<std::string>(std::begin(kChannelNames),
+                                                         std::end(kChannelNames))
+                              : options.columns;
+  for (const std::string& name : wanted) {
+    const auto* it = std::find(std::begin(kChannelNames), std::end(kChannelNames), name);
+    if (it == std::end(kChannelNames)) {
+      throw Error(file_ + ": unknown channel \"" + name +
+                  "\" for a sensor_msgs/Imu topic (available: gx, gy, gz, ax, ay, az)");
+    }
+    const int field = static_cast<int>(it - std::begin(kChannelNames));
+    if (std::find(fields_.begin(), fields_.end(), field) != fields_.end()) {
+      throw Error(file_ + ": channel \"" + name + "\" is selected twice");
+    }
+    fields_.push_back(field);
+    selection_.channel_columns.push_back(field);
+    selection_.channel_names.push_back(name);
+  }
+  selection_.has_time = true;
+
+  backend_ = open_bag(file_);
+  topic_ = options.topic;
+  if (topic_.empty()) {
+    const std::vector<BagTopic> topics = backend_->topics(false);
+    std::vector<const BagTopic*> imu;
+    for (const BagTopic& t : topics) {
+      if (is_imu_type(t.type)) imu.push_back(&t);
+    }
+    if (imu.size() != 1) {
+      throw Error(file_ + ": " +
+                  (imu.empty() ? std::string("no sensor_msgs/Imu topic in the bag")
+                               : std::to_string(imu.size()) +
+                                     " sensor_msgs/Imu topics; choose one with --topic") +
+                  "; its topics: " + topic_list(backend_->topics(true)));
+    }
+    topic_ = imu.front()->name;
+  }
+  if (!backend_->select(topic_)) {
+    throw Error(file_ + ": no topic " + topic_ + " in the bag; its topics: " +
+                topic_list(backend_->topics(true)));
+  }
+  timing_.set_policy(options.gaps, file_);
+  timing_.start(true, TimeUnit::ns);
+}
+
+BagLog::~BagLog() = default;
+
+std::int64_t BagLog::key(const ImuSample& s) const {
+  return stamp_ == BagStamp::header ? s.header_ns : s.receive_ns;
+}
+
+void BagLog::admit(const ImuSample& in) {
+  const std::int64_t k = key(in);
+  if (emitted_ && k < last_emitted_ns_) {
+    throw ParseError(file_, 0, 0,
+                     location(in) + " on " + topic_ + ": its " +
+                         (stamp_ == BagStamp::header ? "header" : "receive") + " stamp is " +
+                         format_ns(max_seen_ns_ - k) +
+                         " before the latest stamp seen: it arrived more messages late than the "
+                         "reorder window (" + std::to_string(window_) +
+                         " messages) can put back in order; raise --reorder-window or try "
+                         "--stamp " + (stamp_ == BagStamp::header ? "receive" : "header"));
+  }
+  if (seen_ && k < max_seen_ns_) {
+    ++reordered_;
+    max_reorder_ns_ = std::max(max_reorder_ns_, max_seen_ns_ - k);
+  }
+  if (!seen_ || k > max_seen_ns_) max_seen_ns_ = k;
+  seen_ = true;
+  heap_.push_back({k, seq_++, in});
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+bool BagLog::pull(ImuSample& out) {
+  while (!eof_ && heap_.size() <= window_) {
+    ImuSample in;
+    if (!backend_->next(in)) {
+      eof_ = true;
+      break;
+    }
+    admit(in);
+  }
+  if (heap_.empty()) return false;
+  std::pop_heap(heap_.begin(), heap_.end(), Later{});
+  out = heap_.back().sample;
+  last_emitted_ns_ = heap_.back().key_ns;
+  heap_.pop_back();
+  if (!emitted_) first_ns_ = last_emitted_ns_;
+  emitted_ = true;
+  return true;
+}
+
+void BagLog::fail_nonfinite(const ImuSample& s) const {
+  for (std::size_t c = 0; c < fields_.size(); ++c) {
+    const int f = fields_[c];
+    const double v = f < 3 ? s.gyro[f] : s.accel[f - 3];
+    if (!std::isfinite(v)) {
+      throw ParseError(file_, 0, 0,
+                       "non-finite value (NaN or Inf) in channel " + selection_.channel_names[c] +
+                           " of the " + location(s) + " on " + topic_);
+    }
+  }
+  throw std::logic_error("fail_nonfinite: no non-finite value");
+}
+
+std::int64_t BagLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
+  const std::size_t channels = fields_.size();
+  std::int64_t rows = 0;
+  ImuSample s;
+  double row[6];
+  while (rows < max_rows && pull(s)) {
+    bool finite = true;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const int f = fields_[c];
+      row[c] = f < 3 ? s.gyro[f] : s.accel[f - 3];
+      finite &= std::isfinite(row[c]);
+    }
+    if (!finite) {
+      if (nonfinite_ == NonFinitePolicy::skip_row) {
+        timing_.add_skipped();
+        continue;
+      }
+      fail_nonfinite(s);
+    }
+    for (std::size_t c = 0; c < channels; ++c) block.values[c].push_back(row[c]);
+    const TimeStamp stamp{key(s) - first_ns_, 0.0};
+    block.t_s.push_back(timing_.seconds(stamp));
+    timing_.add(stamp, 0);
+    ++rows;
+  }
+  return rows;
+}
+
+}  // namespace sigmatau::detail
+
+namespace sigmatau {
+
+BagStamp parse_bag_stamp(std::string_view text) {
+  if (text == "header") return BagStamp::header;
+  if (text == "receive") return BagStamp::receive;
+  throw Error("unknown bag stamp \"" + std::string(text) + "\" (expected header or receive)");
+}
+
+bool is_bag_path(const std::string& path) { return detail::kind_of(path) != detail::Kind::none; }
+
+std::vector<BagTopic> list_bag_topics(const std::string& path) {
+  return detail::open_bag(path)->topics(true);
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,81 @@
+#pragma once
+// Internal: a ROS bag behind LogReader. Opens the right backend (ROS 1 bag, MCAP, rosbag2 SQLite
+// or a rosbag2 folder), picks the sensor_msgs/Imu topic, restores stamp order within the reorder
+// window and fills SampleBlock rows (channels gx gy gz ax ay az, t_s from the chosen stamp).
+//
+// Time: t_s counts from the stamp of the first message delivered, t_s = (stamp_ns - first_ns) /
+// 1e9, so that int64 nanosecond epoch stamps keep nanosecond resolution in the double (exact for
+// the first 2^53 ns = 104 days of a bag). The TimingAccumulator is fed the same relative integer
+// nanoseconds, so its intervals are exact and its gap start times match t_s.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bag_backend.hpp"
+#include "log_internal.hpp"
+
+namespace sigmatau::detail {
+
+/// Largest LogOptions::reorder_window accepted [messages]: 10^7 x about 90 bytes = 0.9 GB would
+/// already be the whole memory budget of a bag read; a larger value is a typo.
+constexpr std::int64_t kMaxReorderWindow = 10000000;
+
+/// The backend for `path` (magic bytes first, then extension, or a rosbag2 folder). Throws Error
+/// when the path is not a bag or cannot be opened, ParseError when its start is corrupt.
+std::unique_ptr<BagBackend> open_bag(const std::string& path);
+
+class BagLog {
+ public:
+  /// Opens the bag, chooses the topic and the channels. Throws Error for options that do not
+  /// apply to a bag, an unknown channel, an absent or ambiguous topic (listing the topics).
+  BagLog(const LogOptions& options, TimingAccumulator& timing);
+  ~BagLog();
+
+  const ColumnSelection& selection() const { return selection_; }
+  const std::string& topic() const { return topic_; }
+
+  /// Appends up to max_rows rows to `block` (values sized to the channels, t_s). Returns the
+  /// count, 0 at the end. Throws ParseError on corrupt data, a message later than the reorder
+  /// window allows, or a non-finite value under NonFinitePolicy::error.
+  std::int64_t read_rows(SampleBlock& block, std::int64_t max_rows);
+
+  std::int64_t reordered_samples() const { return reordered_; }
+  double max_reorder_s() const { return static_cast<double>(max_reorder_ns_) / 1e9; }
+  std::int64_t bytes_read() const { return backend_->bytes_read(); }
+  std::int64_t total_bytes() const { return backend_->total_bytes(); }
+
+ private:
+  struct Pending {
+    std::int64_t key_ns;  // the chosen stamp
+    std::uint64_t seq;    // arrival order, so that equal stamps keep it
+    ImuSample sample;
+  };
+  bool pull(ImuSample& out);
+  void admit(const ImuSample& in);
+  std::int64_t key(const ImuSample& s) const;
+  [[noreturn]] void fail_nonfinite(const ImuSample& s) const;
+
+  std::string file_;
+  std::unique_ptr<BagBackend> backend_;
+  TimingAccumulator& timing_;
+  NonFinitePolicy nonfinite_;
+  BagStamp stamp_;
+  std::string topic_;
+  ColumnSelection selection_;
+  std::vector<int> fields_;  // per channel: 0..2 gyro, 3..5 accel
+  // Reorder window: a min-heap on (key_ns, seq) of at most window_ + 1 messages.
+  std::size_t window_ = 0;
+  std::vector<Pending> heap_;
+  std::uint64_t seq_ = 0;
+  bool eof_ = false;
+  bool emitted_ = false;
+  std::int64_t last_emitted_ns_ = 0;
+  bool seen_ = false;
+  std::int64_t max_seen_ns_ = 0;
+  std::int64_t reordered_ = 0;
+  std::int64_t max_reorder_ns_ = 0;
+  std::int64_t first_ns_ = 0;
+};
+
+}  // namespace sigmatau::detail
