@@ -39,6 +39,10 @@ class BagBackend {
 std::unique_ptr<BagBackend> open_ros1_bag(const std::string& path);
 std::unique_ptr<BagBackend> open_mcap(const std::string& path);
 std::unique_ptr<BagBackend> open_rosbag2_sqlite(const std::string& path);
+/// A rosbag2 recording folder: reads `dir`/metadata.yaml (storage sqlite3 or mcap, its files in
+/// order, per-message zstd compression) and chains its files. Throws Error / ParseError naming
+/// metadata.yaml (with line and column) or the file at fault; refuses file-level compression.
+std::unique_ptr<BagBackend> open_rosbag2_folder(const std::string& dir);
 
 /// ParseError "<where>: topic <topic> has type <type>, expected sensor_msgs/Imu ...".
 [[noreturn]] void throw_wrong_type(const std::string& file, const std::string& where,
