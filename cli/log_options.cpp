@@ -28,7 +28,10 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
 bool stderr_is_tty() { return ::isatty(STDERR_FILENO) == 1; }
 
 void add_log_options(CLI::App& command, LogArguments& args) {
-  command.add_option("INPUT", args.input, "log file (CSV/TSV/whitespace text, .gz, raw binary), - for stdin")
+  command.add_option("INPUT", args.input,
+                     "log file (CSV/TSV/whitespace text, .gz, raw binary), - for stdin, or a ROS "
+                     "bag (ROS 1 .bag, ROS 2 .mcap or .db3, a rosbag2 folder): its "
+                     "sensor_msgs/Imu messages as channels gx gy gz [rad/s] ax ay az [m/s^2]")
       ->required();
   command.add_option("--columns", args.columns,
                      "channels to analyse: header names or 0-based indices, comma-separated "
@@ -50,11 +53,22 @@ void add_log_options(CLI::App& command, LogArguments& args) {
   command.add_flag("--big-endian", args.big_endian, "binary samples are big-endian");
   command.add_option("--skip-bytes", args.skip_bytes, "bytes of header to skip (--binary)");
   command.add_option("--gaps", args.gaps,
-                     "time-stamp gaps (> 1.5 intervals) and backwards stamps: report (default), "
-                     "error, split (segments), fill (linear interpolation)")
+                     "time-stamp gaps (> 1.5 intervals) and backwards or duplicated stamps: "
+                     "error (default; the message says where), split (analyse the contiguous "
+                     "segments apart and combine them), fill (linear interpolation), report "
+                     "(only count them and analyse the log as if contiguous)")
       ->capture_default_str();
   command.add_option("--nonfinite", args.nonfinite, "NaN/Inf values: error (default) or skip the row")
       ->capture_default_str();
+  command.add_option("--topic", args.topic,
+                     "ROS bag: the sensor_msgs/Imu topic to read (default: the bag's only Imu "
+                     "topic; otherwise the error lists the topics)");
+  command.add_option("--stamp", args.stamp,
+                     "ROS bag: time column from the message's header stamp (default) or the "
+                     "recorder's receive time: header|receive");
+  command.add_option("--reorder-window", args.reorder_window,
+                     "ROS bag: out-of-order stamps are sorted within this many messages "
+                     "(default 10000); a message later than that is an error");
 }
 
 LogOptions log_options_from(const LogArguments& args) {
@@ -65,6 +79,27 @@ LogOptions log_options_from(const LogArguments& args) {
   options.time_unit = parse_time_unit(args.time_unit);
   options.gaps = parse_gap_policy(args.gaps);
   options.nonfinite = parse_nonfinite_policy(args.nonfinite);
+  if (is_bag_path(args.input)) {
+    if (!args.time_column.empty() || args.time_unit != "s") {
+      throw Error(args.input + ": --time-column and --time-unit are for text logs; a ROS bag has "
+                               "its own stamps (choose with --stamp header|receive)");
+    }
+    if (!args.binary.empty() || args.channels != 0 || args.big_endian || args.skip_bytes != 0) {
+      throw Error(args.input + ": --binary, --channels, --big-endian and --skip-bytes are for raw "
+                               "binary logs, not for a ROS bag");
+    }
+    options.topic = args.topic;
+    if (!args.stamp.empty()) options.stamp = parse_bag_stamp(args.stamp);
+    if (args.reorder_window) {
+      if (*args.reorder_window < 0) throw Error("--reorder-window must be >= 0 messages");
+      options.reorder_window = *args.reorder_window;
+    }
+    return options;
+  }
+  if (!args.topic.empty() || !args.stamp.empty() || args.reorder_window) {
+    throw Error(args.input + ": --topic, --stamp and --reorder-window are for ROS bags (.bag, "
+                             ".mcap, .db3 or a rosbag2 folder)");
+  }
   if (!args.binary.empty()) {
     options.binary = parse_binary_format(args.binary);
     if (!(args.channels > 0)) throw Error("--binary needs --channels C (C >= 1)");

@@ -25,8 +25,12 @@ struct LogArguments {
   int channels = 0;
   bool big_endian = false;
   std::int64_t skip_bytes = 0;
-  std::string gaps = "report";     // report|error|split|fill
+  std::string gaps = "error";      // error|split|fill|report
   std::string nonfinite = "error"; // error|skip
+  // ROS bags:
+  std::string topic;                          // sensor_msgs/Imu topic; empty: the only one
+  std::string stamp;                          // header|receive; empty: header
+  std::optional<std::int64_t> reorder_window; // [messages]; unset: LogOptions' default
 };
 
 /// Adds INPUT and the log options to `command`.
