@@ -107,8 +107,7 @@ std::unique_ptr<BagBackend> open_bag(const std::string& path) {
     case Kind::sqlite:
       return open_rosbag2_sqlite(path);
     case Kind::folder:
-      throw Error(path + ": a rosbag2 folder is not read yet; give one of its .db3 or .mcap "
-                         "files instead");
+      return open_rosbag2_folder(path);
     case Kind::none:
       break;
   }

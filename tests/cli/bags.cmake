@@ -19,6 +19,23 @@ add_test(NAME cli_bags_unindexed_same_as_csv
                  "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--columns@@gz,ax@@--format@@csv"
                  -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
 list(APPEND bag_tests cli_bags_unindexed_same_as_csv)
+# ROS 2: MCAP (zstd, CDR LE; lz4, XCDR2 BE, no summary), SQLite .db3 and a rosbag2 folder hold
+# the same messages: the same table as the CSV.
+foreach(ros2 imu_zstd.mcap imu_lz4.mcap imu.db3 imu_folder)
+  string(MAKE_C_IDENTIFIER ${ros2} id)
+  add_test(NAME cli_bags_${id}_same_as_csv
+           COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
+                   "-DARGS_A=adev@@${bag_dir}/${ros2}@@--columns@@gy,az@@--format@@csv"
+                   "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--columns@@gy,az@@--format@@csv"
+                   -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
+  list(APPEND bag_tests cli_bags_${id}_same_as_csv)
+endforeach()
+sigmatau_cli_test(NAME cli_bags_mcap_absent_topic EXIT 2
+  STDERR "no topic /imu/raw in the bag; its topics: .*/imu/data \\(sensor_msgs/msg/Imu, 20000 messages\\)"
+  ARGS psd ${bag_dir}/imu_zstd.mcap --topic /imu/raw)
+sigmatau_cli_test(NAME cli_bags_db3_fit EXIT 0 STDOUT "# gx +joint"
+  ARGS fit ${bag_dir}/imu.db3 --columns gx --stamp receive)
+list(APPEND bag_tests cli_bags_mcap_absent_topic cli_bags_db3_fit)
 
 sigmatau_cli_test(NAME cli_bags_adev_topic EXIT 0
   STDOUT "/imu\\.bag: 20000 samples at 200 Hz.*# gx +oadev.*# az +oadev"

@@ -7,6 +7,11 @@
 //   two_imu.bag        two sensor_msgs/Imu topics, /imu/a and /imu/b
 //   truncated.bag      imu.bag cut 100 bytes into its first chunk (at byte offset 4109: the
 //                      13-byte magic plus the 4096-byte bag header record rosbag pads to)
+//   imu_zstd.mcap      the same Imu data as ROS 2 MCAP, zstd chunks, CDR little endian, with /tf
+//   imu_lz4.mcap       lz4 chunks, CDR big endian (XCDR2), no summary (a recorder that crashed)
+//   imu.db3            rosbag2 SQLite, per-message zstd
+//   imu_folder/        a rosbag2 folder: metadata.yaml and three .db3 files
+// (the ROS 2 files with tests/support/ros2_bag_writer.hpp)
 // Data: 20000 samples at 200 Hz, white noise of 1e-3 rad/s (gyro) and 0.02 m/s^2 (accel, on
 // gravity along z), a fixed seed.
 // Usage: make_test_bags OUT_DIR
@@ -19,10 +24,12 @@
 #include <vector>
 
 #include "ros1_bag_writer.hpp"
+#include "ros2_bag_writer.hpp"
 
 namespace fs = std::filesystem;
 using sigmatau::test::Ros1BagWriter;
 using sigmatau::test::Ros1Imu;
+namespace t2 = sigmatau::test;
 
 namespace {
 
@@ -73,6 +80,28 @@ void write_csv(const std::string& path, const std::vector<Ros1Imu>& m) {
   std::fclose(f);
 }
 
+/// The same messages as ROS 2 topics: /imu/data and a /tf declared with another type.
+std::vector<t2::Ros2Topic> ros2_topics(const std::vector<Ros1Imu>& m, t2::CdrKind cdr) {
+  t2::Ros2Topic imu;
+  imu.name = "/imu/data";
+  imu.cdr = cdr;
+  for (const Ros1Imu& x : m) {
+    t2::ImuValue v;
+    v.header_ns = x.header_ns;
+    v.receive_ns = x.receive_ns;
+    for (int k = 0; k < 3; ++k) {
+      v.gyro[k] = x.gyro[k];
+      v.accel[k] = x.accel[k];
+    }
+    imu.values.push_back(v);
+  }
+  t2::Ros2Topic tf;
+  tf.name = "/tf";
+  tf.type = "tf2_msgs/msg/TFMessage";
+  tf.values.assign(imu.values.begin(), imu.values.begin() + 50);
+  return {imu, tf};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,6 +133,20 @@ int main(int argc, char** argv) {
       std::ofstream(dir / "truncated.bag", std::ios::binary | std::ios::trunc)
           .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     }
+    t2::McapOptions zstd;
+    zstd.compression = "zstd";
+    zstd.chunk_messages = 500;
+    t2::write_mcap(dir / "imu_zstd.mcap", ros2_topics(m, t2::CdrKind::xcdr1_le), zstd);
+    t2::McapOptions lz4;
+    lz4.compression = "lz4";
+    lz4.chunk_messages = 500;
+    lz4.summary = false;
+    lz4.footer = false;
+    t2::write_mcap(dir / "imu_lz4.mcap", ros2_topics(m, t2::CdrKind::xcdr2_be), lz4);
+    t2::write_db3(dir / "imu.db3", ros2_topics(m, t2::CdrKind::xcdr1_le), true);
+    fs::remove_all(dir / "imu_folder");
+    t2::write_rosbag2_folder(dir / "imu_folder", "sqlite3", ros2_topics(m, t2::CdrKind::xcdr1_le),
+                             3);
   } catch (const std::exception& e) {
     std::cerr << "make_test_bags: " << e.what() << "\n";
     return 1;
