@@ -59,7 +59,7 @@ int noise_order(Statistic s) { return (s == Statistic::hdev || s == Statistic::o
 
 /// compute_allan_curve keeps the previous tau's noise type once floor((N-1)/m) averages are at
 /// most this many (allan_curve.cpp, from Stable32).
-std::int64_t kept_noise_threshold(Statistic s) {
+std::int64_t stream_kept_noise_threshold(Statistic s) {
   return (s == Statistic::adev || s == Statistic::hdev) ? 9 : 7;
 }
 
@@ -637,7 +637,7 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
       point.confidence.noise =
           s.identify(static_cast<std::size_t>(it - s.noise_factors.begin()), statistic);
       const std::int64_t averages = (N - 1) / tau.m;
-      if (!curve.points.empty() && averages <= kept_noise_threshold(statistic)) {
+      if (!curve.points.empty() && averages <= stream_kept_noise_threshold(statistic)) {
         point.confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
         point.confidence.noise.method = NoiseIdentification::Method::previous_tau;
       }

@@ -10,11 +10,8 @@
 #include <cstdint>
 #include <memory>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include "allan_dd.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(SIGMATAU_NO_CLONES)
@@ -217,23 +214,13 @@ SIGMATAU_TARGET_CLONES void fill_d2(const double* h, const double* l, std::int64
 
 }  // namespace
 
-CompactPhase::CompactPhase(const PhaseSeries& series) {
+CompactPhase::CompactPhase(const PhaseSeries& series)
+    : offset(static_cast<std::size_t>(series.size()), series.store().storage) {
+  // The buffer asks for 2 MiB pages where Linux allows them (phase_spill.cpp): the sweep
+  // touches ~27 distant places of the array per block, and with 4 KiB pages each costs TLB misses.
   const double* h = series.hi().data();
   const double* l = series.lo().data();
   const std::int64_t N = series.size();
-  offset.reserve(static_cast<std::size_t>(N));
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  // 2 MiB pages where Linux allows them (see phase_series.cpp): the sweep touches ~27 distant
-  // places of the array per block, and with 4 KiB pages each costs TLB misses.
-  {
-    constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
-    const auto begin = reinterpret_cast<std::uintptr_t>(offset.data());
-    const std::uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
-    const std::uintptr_t last = (begin + static_cast<std::uintptr_t>(N) * sizeof(double)) & ~(kHugePage - 1);
-    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-  }
-#endif
-  offset.resize(static_cast<std::size_t>(N));
   base.resize(static_cast<std::size_t>((N + kBaseBlock - 1) / kBaseBlock));
   for (std::int64_t b = 0; b * kBaseBlock < N; ++b) {
     const std::int64_t k0 = b * kBaseBlock;
@@ -241,6 +228,13 @@ CompactPhase::CompactPhase(const PhaseSeries& series) {
     split_block(h + k0, l + k0, std::min(kBaseBlock, N - k0), h[k0], l[k0],
                 offset.data() + k0);
   }
+}
+
+std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series) {
+  PhaseStore& store = series.store();
+  std::lock_guard lock(store.mutex);
+  if (!store.compact) store.compact = std::make_shared<const CompactPhase>(series);
+  return store.compact;
 }
 
 namespace {
@@ -286,10 +280,8 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
   if (m.empty()) return sums;
   const double* h = series.hi().data();
   const double* l = series.lo().data();
-  std::unique_ptr<CompactPhase> phase;
-  if (*std::max_element(m.begin(), m.end()) >= kCompactMin) {
-    phase = std::make_unique<CompactPhase>(series);
-  }
+  std::shared_ptr<const CompactPhase> phase;
+  if (*std::max_element(m.begin(), m.end()) >= kCompactMin) phase = compact_phase(series);
   const double* o = phase ? phase->offset.data() : nullptr;
   for (std::size_t g0 = 0; g0 < m.size(); g0 += kSweepGroup) {
     const std::size_t g1 = std::min(m.size(), g0 + kSweepGroup);

@@ -12,10 +12,12 @@
 //         x*[L+j] = 2x[L] - x[L-j]                                            (total)
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "allan_dd.hpp"
+#include "phase_spill.hpp"
 #include "sigmatau/phase_series.hpp"
 
 namespace sigmatau::detail {
@@ -26,11 +28,17 @@ namespace sigmatau::detail {
 /// needs three or four loads instead of six or eight. offset[k] is W(b B, k - b B) rounded once,
 /// so it is accurate to ~1 ulp of the phase excursion within its block; every difference adds the
 /// exact (double-double) difference of the bases, rounded once.
+/// The offsets live where the series does (memory, or a spilled file: PhaseStorage).
 struct CompactPhase {
   explicit CompactPhase(const PhaseSeries& series);
-  std::vector<double> offset;
+  DoubleBuffer offset;
   std::vector<DoubleDouble> base;
 };
+
+/// The series' compact phase, built on first use and kept with the series (shared by every
+/// statistic, factor and call, and by copies of the series) until drop_sweep_cache().
+/// Thread-safe: concurrent first uses build it once.
+std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series);
 
 /// For each m (ascending, each with counts[t] >= 1 terms), sum_{n < counts[t]} D(n)^2 with
 /// D = D2 (order 2, OADEV) or D3 (order 3, OHDEV) and n = 0, 1, 2, ... (every start point).

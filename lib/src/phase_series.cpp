@@ -17,11 +17,8 @@
 #include <string>
 
 #include "allan_dd.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/error.hpp"
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace sigmatau {
 namespace {
@@ -29,25 +26,11 @@ namespace {
 /// Samples per block of the mean computation: each block is summed in plain double in kLanes
 /// independent lanes (vectorisable) and the block totals are carried in double-double, so the
 /// rounding error of the mean is that of a sum of kMeanBlock / kLanes terms.
-constexpr std::size_t kMeanBlock = 4096;
-constexpr std::size_t kLanes = 8;
-/// Samples between renormalisations of the running double-double phase (see from_rate).
-constexpr std::size_t kPrefixBlock = 4096;
-
-/// Sizes `v` to n elements, first asking Linux for transparent huge pages where it is in
-/// "madvise" mode: a 1e8-sample phase is 1.6 GB, and faulting it in 4 KiB pages costs more than
-/// computing it on a VM. Only a hint; elsewhere (or if refused) this is a plain resize.
-void allocate(std::vector<double>& v, std::size_t n) {
-  v.reserve(n);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
-  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
-  const std::uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
-  const std::uintptr_t last = (begin + n * sizeof(double)) & ~(kHugePage - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-  v.resize(n);
-}
+constexpr std::int64_t kMeanBlock = 4096;
+constexpr int kLanes = 8;
+/// Samples between renormalisations of the running double-double phase (see Prefix).
+constexpr std::int64_t kPrefixBlock = 4096;
+static_assert(kMeanBlock % kLanes == 0, "lane of sample i is i mod kLanes");
 
 void check_tau0(double tau0_s) {
   if (!(tau0_s > 0.0 && std::isfinite(tau0_s))) {
@@ -55,10 +38,11 @@ void check_tau0(double tau0_s) {
   }
 }
 
-[[noreturn]] void throw_non_finite(std::span<const double> v, const char* what) {
+/// Names the first non-finite value of v (index first + i in the whole log).
+[[noreturn]] void throw_non_finite(std::span<const double> v, std::int64_t first, const char* what) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i])) {
-      throw Error(std::string(what) + " sample " + std::to_string(i) +
+      throw Error(std::string(what) + " sample " + std::to_string(first + static_cast<std::int64_t>(i)) +
                   " (0-based) is not finite (" + std::to_string(v[i]) + ")");
     }
   }
@@ -66,44 +50,222 @@ void check_tau0(double tau0_s) {
 }
 
 /// Mean of y computed as y_0 + mean(y_i - y_0), with the differences split exactly and summed in
-/// blocks: exact for constant data (the mean is then y_0 itself), accurate otherwise. Throws
-/// Error naming the first non-finite sample.
-double accurate_mean(std::span<const double> y, const char* what) {
-  if (y.empty()) return 0.0;
-  const double y0 = y[0];
+/// blocks of kMeanBlock samples (kLanes plain-double lanes, lane = index mod kLanes; block totals
+/// in double-double): exact for constant data (the mean is then y_0 itself), accurate otherwise.
+/// Fed in pieces of any size, the order of every addition is that of one call on the whole log.
+struct MeanAccumulator {
+  std::int64_t count = 0;
+  double y0 = 0.0;
+  double s[kLanes] = {};
+  double e[kLanes] = {};
   detail::DoubleDouble total;
-  double finite_check = 0.0;  // stays 0 unless a sample (or a difference) is Inf or NaN
-  for (std::size_t b = 0; b < y.size(); b += kMeanBlock) {
-    const std::size_t end = std::min(y.size(), b + kMeanBlock);
-    double s[kLanes] = {};
-    double e[kLanes] = {};
-    double c[kLanes] = {};
-    std::size_t i = b;
-    for (; i + kLanes <= end; i += kLanes) {
-      for (std::size_t k = 0; k < kLanes; ++k) {
-        const detail::SumAndError d = detail::two_sum(y[i + k], -y0);
-        s[k] += d.sum;
-        e[k] += d.err;
-        c[k] += d.sum * 0.0;
-      }
-    }
-    for (std::size_t k = 0; i < end; ++i, ++k) {
-      const detail::SumAndError d = detail::two_sum(y[i], -y0);
-      s[k] += d.sum;
-      e[k] += d.err;
-      c[k] += d.sum * 0.0;
-    }
-    for (std::size_t k = 0; k < kLanes; ++k) {
+
+  void flush() {
+    for (int k = 0; k < kLanes; ++k) {
       total.add(s[k], e[k]);
-      finite_check += c[k];
+      s[k] = 0.0;
+      e[k] = 0.0;
     }
   }
-  if (!(finite_check == 0.0) || !std::isfinite(total.hi)) throw_non_finite(y, what);
-  const double n = static_cast<double>(y.size());
-  return y0 + (total.hi / n + total.lo / n);
-}
+
+  /// Adds y (samples count.. of the log). Throws Error naming the first non-finite sample.
+  void add(std::span<const double> y, const char* what) {
+    if (y.empty()) return;
+    if (count == 0) y0 = y[0];
+    const double* p = y.data();
+    const std::int64_t n = static_cast<std::int64_t>(y.size());
+    double finite_check = 0.0;  // stays 0 unless a sample (or a difference) is Inf or NaN
+    double c[kLanes] = {};
+    std::int64_t i = 0;
+    while (i < n) {
+      const std::int64_t offset = count % kMeanBlock;
+      const std::int64_t len = std::min(n - i, kMeanBlock - offset);
+      if (offset == 0 && len == kMeanBlock) {
+        for (std::int64_t j = 0; j < kMeanBlock; j += kLanes) {
+          for (int k = 0; k < kLanes; ++k) {
+            const detail::SumAndError d = detail::two_sum(p[i + j + k], -y0);
+            s[k] += d.sum;
+            e[k] += d.err;
+            c[k] += d.sum * 0.0;
+          }
+        }
+      } else {
+        for (std::int64_t j = 0; j < len; ++j) {
+          const int k = static_cast<int>((offset + j) % kLanes);
+          const detail::SumAndError d = detail::two_sum(p[i + j], -y0);
+          s[k] += d.sum;
+          e[k] += d.err;
+          c[k] += d.sum * 0.0;
+        }
+      }
+      i += len;
+      count += len;
+      if (count % kMeanBlock == 0) flush();
+    }
+    for (int k = 0; k < kLanes; ++k) finite_check += c[k];
+    if (!(finite_check == 0.0)) throw_non_finite(y, count - n, what);
+  }
+
+  /// The mean of everything added; Error if the sum overflowed.
+  double mean(std::span<const double> last, const char* what) {
+    if (count == 0) return 0.0;
+    if (count % kMeanBlock != 0) flush();
+    if (!std::isfinite(total.hi)) throw_non_finite(last, 0, what);
+    const double n = static_cast<double>(count);
+    return y0 + (total.hi / n + total.lo / n);
+  }
+};
+
+/// Cascaded double-double prefix: h is the running sum of the rounded increments and l collects
+/// the exact rounding errors (of y_i - ybar and of each addition to h). Only h + s is on the
+/// dependency chain, so this runs at the latency of one addition per sample; (h, l) is
+/// renormalised after every kPrefixBlock samples so that l stays within a few thousand ulps of
+/// h, where its own rounding is ~2^-106 relative. Each stored pair is normalised.
+struct Prefix {
+  double ybar = 0.0;
+  double h = 0.0;
+  double l = 0.0;
+  std::int64_t count = 0;  // samples integrated so far; the next goes to point count + 1
+
+  void add(std::span<const double> y, double* hi, double* lo) {
+    const double* p = y.data();
+    const std::int64_t n = static_cast<std::int64_t>(y.size());
+    std::int64_t i = 0;
+    while (i < n) {
+      const std::int64_t len = std::min(n - i, kPrefixBlock - count % kPrefixBlock);
+      double* hs = hi + count + 1;
+      double* ls = lo + count + 1;
+      const double* ys = p + i;
+      for (std::int64_t j = 0; j < len; ++j) {
+        const detail::SumAndError d = detail::two_sum(ys[j], -ybar);  // y_i - ybar, exactly
+        const detail::SumAndError t = detail::two_sum(h, d.sum);
+        h = t.sum;
+        l += t.err + d.err;
+        const detail::SumAndError s = detail::two_sum(h, l);
+        hs[j] = s.sum;
+        ls[j] = s.err;
+      }
+      i += len;
+      count += len;
+      if (count % kPrefixBlock == 0) {
+        const detail::SumAndError s = detail::two_sum(h, l);
+        h = s.sum;
+        l = s.err;
+      }
+    }
+  }
+};
 
 }  // namespace
+
+struct PhaseSeriesBuilder::State {
+  DataKind kind;
+  PhaseStorage storage;
+  MeanAccumulator mean;
+  double x0 = 0.0;  // phase input: the first point
+  double last = 0.0;
+  bool appending = false;
+  std::shared_ptr<detail::PhaseStore> store;
+  Prefix prefix;
+  std::int64_t appended = 0;
+};
+
+PhaseSeriesBuilder::PhaseSeriesBuilder(DataKind kind, PhaseStorage storage)
+    : state_(std::make_unique<State>()) {
+  state_->kind = kind;
+  state_->storage = std::move(storage);
+}
+PhaseSeriesBuilder::~PhaseSeriesBuilder() = default;
+PhaseSeriesBuilder::PhaseSeriesBuilder(PhaseSeriesBuilder&&) noexcept = default;
+PhaseSeriesBuilder& PhaseSeriesBuilder::operator=(PhaseSeriesBuilder&&) noexcept = default;
+
+std::int64_t PhaseSeriesBuilder::samples() const { return state_->mean.count; }
+
+void PhaseSeriesBuilder::scan(std::span<const double> values) {
+  State& st = *state_;
+  if (st.appending) throw Error("PhaseSeriesBuilder: scan() after append()");
+  if (values.empty()) return;
+  if (st.kind == DataKind::phase) {
+    if (st.mean.count == 0) {
+      st.x0 = values[0];
+      if (!std::isfinite(st.x0)) throw_non_finite(values, 0, "phase");
+    }
+    double finite_check = 0.0;
+    for (const double v : values) finite_check += (v - st.x0) * 0.0;
+    if (!(finite_check == 0.0)) throw_non_finite(values, st.mean.count, "phase");
+    st.mean.count += static_cast<std::int64_t>(values.size());
+  } else {
+    st.mean.add(values, "rate");
+  }
+  st.last = values.back();
+}
+
+void PhaseSeriesBuilder::append(std::span<const double> values) {
+  State& st = *state_;
+  const std::int64_t total = st.mean.count;
+  if (!st.appending) {
+    st.appending = true;
+    if (st.kind != DataKind::phase) {
+      const double last[1] = {st.last};
+      st.prefix.ybar = st.mean.mean(last, "rate");
+    }
+    const std::int64_t points = st.kind == DataKind::phase ? total : total + 1;
+    st.store = std::make_shared<detail::PhaseStore>();
+    st.store->storage = st.storage;
+    st.store->hi = detail::DoubleBuffer(static_cast<std::size_t>(points), st.storage);
+    st.store->lo = detail::DoubleBuffer(static_cast<std::size_t>(points), st.storage);
+    if (st.kind != DataKind::phase && points > 0) {
+      st.store->hi.data()[0] = 0.0;
+      st.store->lo.data()[0] = 0.0;
+    }
+  }
+  const std::int64_t n = static_cast<std::int64_t>(values.size());
+  if (st.appended + n > total) {
+    throw Error("PhaseSeriesBuilder: pass 2 delivered more samples (" +
+                std::to_string(st.appended + n) + ") than pass 1 (" + std::to_string(total) + ")");
+  }
+  double* hi = st.store->hi.data();
+  double* lo = st.store->lo.data();
+  if (st.kind == DataKind::phase) {
+    for (std::int64_t k = 0; k < n; ++k) {
+      const detail::SumAndError d = detail::two_sum(values[k], -st.x0);  // x_k - x_0, exactly
+      hi[st.appended + k] = d.sum;
+      lo[st.appended + k] = d.err;
+    }
+  } else {
+    st.prefix.add(values, hi, lo);
+  }
+  st.appended += n;
+}
+
+PhaseSeries PhaseSeriesBuilder::finish(double tau0_s) {
+  check_tau0(tau0_s);
+  State& st = *state_;
+  if (!st.appending) append({});
+  if (st.appended != st.mean.count) {
+    throw Error("PhaseSeriesBuilder: pass 2 delivered " + std::to_string(st.appended) +
+                " samples, pass 1 " + std::to_string(st.mean.count));
+  }
+  PhaseSeries series(st.kind, tau0_s);
+  series.mean_rate_ = st.kind == DataKind::phase ? 0.0 : st.prefix.ybar;
+  if (st.kind == DataKind::increment) series.mean_rate_ /= tau0_s;  // per sample -> per s
+  series.store_ = std::move(st.store);
+  series.hi_ = series.store_->hi.data();
+  series.lo_ = series.store_->lo.data();
+  series.size_ = static_cast<std::int64_t>(series.store_->hi.size());
+  st.appending = false;
+  st.mean = MeanAccumulator{};
+  st.appended = 0;
+  return series;
+}
+
+bool PhaseSeries::spilled() const { return store_ && store_->hi.spilled(); }
+
+void PhaseSeries::drop_sweep_cache() const {
+  if (!store_) return;
+  std::lock_guard lock(store_->mutex);
+  store_->compact.reset();
+}
 
 DataKind parse_data_kind(std::string_view text) {
   if (text == "rate") return DataKind::rate;
@@ -121,74 +283,38 @@ std::string_view to_string(DataKind kind) {
   return "?";
 }
 
-PhaseSeries PhaseSeries::from_rate(std::span<const double> y, double tau0_s) {
+namespace {
+PhaseSeries build(std::span<const double> values, DataKind kind, double tau0_s,
+                  const PhaseStorage& storage) {
   check_tau0(tau0_s);
-  PhaseSeries series(DataKind::rate, tau0_s);
-  const double ybar = accurate_mean(y, "rate");
-  series.mean_rate_ = ybar;
-  allocate(series.hi_, y.size() + 1);
-  allocate(series.lo_, y.size() + 1);
-  double* hi = series.hi_.data();
-  double* lo = series.lo_.data();
-  hi[0] = 0.0;
-  lo[0] = 0.0;
-  // Cascaded double-double prefix: h is the running sum of the rounded increments and l collects
-  // the exact rounding errors (of y_i - ybar and of each addition to h). Only h + s is on the
-  // dependency chain, so this runs at the latency of one addition per sample; (h, l) is
-  // renormalised every kPrefixBlock samples so that l stays within a few thousand ulps of h,
-  // where its own rounding is ~2^-106 relative. Each stored pair is normalised.
-  double h = 0.0;
-  double l = 0.0;
-  for (std::size_t b = 0; b < y.size(); b += kPrefixBlock) {
-    const std::size_t end = std::min(y.size(), b + kPrefixBlock);
-    for (std::size_t i = b; i < end; ++i) {
-      const detail::SumAndError d = detail::two_sum(y[i], -ybar);  // y_i - ybar, exactly
-      const detail::SumAndError t = detail::two_sum(h, d.sum);
-      h = t.sum;
-      l += t.err + d.err;
-      const detail::SumAndError n = detail::two_sum(h, l);
-      hi[i + 1] = n.sum;
-      lo[i + 1] = n.err;
-    }
-    const detail::SumAndError n = detail::two_sum(h, l);
-    h = n.sum;
-    l = n.err;
-  }
-  return series;
+  PhaseSeriesBuilder builder(kind, storage);
+  builder.scan(values);
+  builder.append(values);
+  return builder.finish(tau0_s);
+}
+}  // namespace
+
+PhaseSeries PhaseSeries::from_rate(std::span<const double> y, double tau0_s,
+                                   const PhaseStorage& storage) {
+  return build(y, DataKind::rate, tau0_s, storage);
 }
 
-PhaseSeries PhaseSeries::from_increments(std::span<const double> increments, double tau0_s) {
-  PhaseSeries series = from_rate(increments, tau0_s);
-  series.kind_ = DataKind::increment;
-  series.mean_rate_ /= tau0_s;  // mean increment per sample -> mean rate [input unit / s]
-  return series;
+PhaseSeries PhaseSeries::from_increments(std::span<const double> increments, double tau0_s,
+                                         const PhaseStorage& storage) {
+  return build(increments, DataKind::increment, tau0_s, storage);
 }
 
-PhaseSeries PhaseSeries::from_phase(std::span<const double> x, double tau0_s) {
-  check_tau0(tau0_s);
-  PhaseSeries series(DataKind::phase, tau0_s);
-  allocate(series.hi_, x.size());
-  allocate(series.lo_, x.size());
-  if (x.empty()) return series;
-  const double x0 = x[0];
-  if (!std::isfinite(x0)) throw_non_finite(x, "phase");
-  double finite_check = 0.0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const detail::SumAndError d = detail::two_sum(x[k], -x0);  // x_k - x_0, exactly
-    series.hi_[k] = d.sum;
-    series.lo_[k] = d.err;
-    finite_check += d.sum * 0.0;
-  }
-  if (!(finite_check == 0.0)) throw_non_finite(x, "phase");
-  return series;
+PhaseSeries PhaseSeries::from_phase(std::span<const double> x, double tau0_s,
+                                    const PhaseStorage& storage) {
+  return build(x, DataKind::phase, tau0_s, storage);
 }
 
 PhaseSeries PhaseSeries::from_samples(std::span<const double> values, DataKind kind,
-                                      double tau0_s) {
+                                      double tau0_s, const PhaseStorage& storage) {
   switch (kind) {
-    case DataKind::rate: return from_rate(values, tau0_s);
-    case DataKind::increment: return from_increments(values, tau0_s);
-    case DataKind::phase: return from_phase(values, tau0_s);
+    case DataKind::rate: return from_rate(values, tau0_s, storage);
+    case DataKind::increment: return from_increments(values, tau0_s, storage);
+    case DataKind::phase: return from_phase(values, tau0_s, storage);
   }
   throw Error("unknown data kind");
 }

@@ -1,0 +1,26 @@
+#pragma once
+// Internal: what a PhaseSeries holds, shared by its copies. The double-double phase (hi, lo) is
+// written once by the builder and never changed; derived forms of it are built on first use and
+// kept, so that repeated estimates (several statistics, several calls) do not rebuild them.
+
+#include <memory>
+#include <mutex>
+
+#include "phase_spill.hpp"
+#include "sigmatau/phase_series.hpp"
+
+namespace sigmatau::detail {
+
+struct CompactPhase;  // allan_sums.hpp
+
+struct PhaseStore {
+  PhaseStorage storage;
+  DoubleBuffer hi;
+  DoubleBuffer lo;
+  /// The sweep copy (allan_sums.cpp: compact_phase()), guarded by `mutex` while it is built or
+  /// dropped; estimators hold a shared_ptr to it while they use it.
+  std::mutex mutex;
+  std::shared_ptr<const CompactPhase> compact;
+};
+
+}  // namespace sigmatau::detail
