@@ -27,6 +27,8 @@ constexpr std::int64_t kChunk = std::int64_t{1} << 16;
 const double kUniformWidthPerQ = std::sqrt(12.0);
 /// Longest flicker filter accepted (2^28 taps: 2 GiB of FFT scratch per thread).
 constexpr std::int64_t kMaxFlickerTaps = std::int64_t{1} << 28;
+/// The sinusoid recurrence restarts from std::sin/cos every this many samples (see generate).
+constexpr std::int64_t kSinusoidRestart = 1024;
 
 bool is_power_of_two(std::int64_t v) { return v > 0 && (v & (v - 1)) == 0; }
 
@@ -46,8 +48,8 @@ struct Channel {
   double rw = 0;      // random-walk value b_{k-1}
   double gm = 0;      // Gauss-Markov value g_{k-1}
   double e_prev = 0;  // quantization error e_{k-1}
-  std::vector<double> flicker;  // current flicker block (unit innovation)
-  std::int64_t flicker_block = -1;
+  std::vector<double> flicker;  // current flicker block pair (unit innovation)
+  std::int64_t flicker_block = -1;  // its pair index
   std::vector<double> values;   // the current chunk
   std::vector<double> scratch;
 };
@@ -212,18 +214,18 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
     c.e_prev = e_prev;
   }
   if (t.bias_instability) {
-    const std::int64_t L = filter->taps();
+    const std::int64_t span = 2 * filter->taps();  // one block pair
     const double b = *t.bias_instability;
     for (std::int64_t i = 0; i < n;) {
       const std::int64_t k = a + i;
-      const std::int64_t block = k / L;
-      if (block != c.flicker_block) {
-        c.flicker.resize(static_cast<std::size_t>(L));
-        filter->block(*ws, key_of(c, NoiseTerm::bias_instability), block, c.flicker.data());
-        c.flicker_block = block;
+      const std::int64_t pair = k / span;
+      if (pair != c.flicker_block) {
+        c.flicker.resize(static_cast<std::size_t>(span));
+        filter->block_pair(*ws, key_of(c, NoiseTerm::bias_instability), pair, c.flicker.data());
+        c.flicker_block = pair;
       }
-      const std::int64_t offset = k - block * L;
-      const std::int64_t m = std::min(n - i, L - offset);
+      const std::int64_t offset = k - pair * span;
+      const std::int64_t m = std::min(n - i, span - offset);
       for (std::int64_t j = 0; j < m; ++j) v[i + j] += b * c.flicker[offset + j];
       i += m;
     }
@@ -264,9 +266,22 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
       const double x = kPi * t.sinusoid->frequency_hz * tau0;
       amplitude *= std::sin(x) / x;
     }
-    for (std::int64_t i = 0; i < n; ++i)
-      v[i] += amplitude * std::sin(omega * (static_cast<double>(a + i) + t_offset) * tau0 +
-                                   t.sinusoid->phase_rad);
+    // A rotation recurrence (sin, cos) -> (sin, cos) advanced by omega tau0, restarted from
+    // std::sin / std::cos every kSinusoidRestart samples of the absolute index grid (so the
+    // values do not depend on the chunking); rounding grows by ~1e-16 per step: < 1e-13.
+    const double step_c = std::cos(omega * tau0), step_s = std::sin(omega * tau0);
+    for (std::int64_t i = 0; i < n;) {
+      const double phase = omega * (static_cast<double>(a + i) + t_offset) * tau0 +
+                           t.sinusoid->phase_rad;
+      double sn = std::sin(phase), cs = std::cos(phase);
+      const std::int64_t end = std::min(n, i + kSinusoidRestart - (a + i) % kSinusoidRestart);
+      for (; i < end; ++i) {
+        v[i] += amplitude * sn;
+        const double next_s = sn * step_c + cs * step_s;
+        cs = cs * step_c - sn * step_s;
+        sn = next_s;
+      }
+    }
   }
   if (increment) {
     for (std::int64_t i = 0; i < n; ++i) v[i] *= tau0;

@@ -202,11 +202,23 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
           ? "the counts' LSB rounding is not included (with enough other noise it adds white "
             "noise of variance LSB^2/12 per sample)"
           : "";
+  // The flicker AVAR per unit B^2 costs O(taps + m) per factor: computed once per factor, not
+  // once per channel.
+  std::vector<double> flicker_unit;
+  if (any_flicker)
+    for (std::int64_t m : ms) flicker_unit.push_back(flicker_avar_per_unit(m, sampling.flicker_taps));
   const auto curves = [&](const ErrorModel& model, const char* prefix) {
     for (int axis = 0; axis < 3; ++axis) {
+      const NoiseTerms& terms = model.noise[static_cast<std::size_t>(axis)];
       std::vector<double> avar;
-      for (std::int64_t m : ms)
-        avar.push_back(sampled_avar(model.noise[static_cast<std::size_t>(axis)], m, sampling));
+      for (std::size_t i = 0; i < ms.size(); ++i) {
+        double total = 0;
+        for (NoiseTerm term : kAllNoiseTerms)
+          if (term != NoiseTerm::bias_instability) total += sampled_avar(terms, term, ms[i], sampling);
+        if (terms.bias_instability)
+          total += *terms.bias_instability * *terms.bias_instability * flicker_unit[i];
+        avar.push_back(total);
+      }
       theory["avar"][std::string(prefix) + "xyz"[axis]] = avar;
     }
   };

@@ -14,7 +14,8 @@
 ///  - quantization: y_k += (e_k - e_{k-1}) / tau0, e_k uniform of width Q sqrt(12) (the additive
 ///                  equivalent of quantizing the integrated angle with step Q sqrt(12))
 ///  - flicker:      y_k += B sum_{j<L} h_j w_{k-j} (Kasdin, h_j = h_{j-1}(j - 1/2)/j), an
-///                  exact L-tap FIR evaluated by FFT overlap-save; the white input is
+///                  exact L-tap FIR evaluated by FFT overlap-save (two blocks of L per complex
+///                  transform); the white input is
 ///                  regenerated from its counter-based stream, so the process is stationary and
 ///                  its AVAR is flicker_avar_per_unit(m, L) B^2 exactly. It is 1/f for
 ///                  f >~ 1/(L tau0); flicker_band(L) gives the taus where the ADEV is flat.
@@ -166,7 +167,7 @@ struct SimulationConfig {
   CountsFormat gyro_counts;         ///< for kind == counts
   CountsFormat accel_counts;        ///< for kind == counts
   /// Longest flicker filter [taps], a power of two >= kRandomSubBlock. Memory is about
-  /// 8 L bytes per flicker channel plus 32 L per thread plus 16 L; the flat band ends near
+  /// 16 L bytes per flicker channel plus 32 L per thread plus 16 L; the flat band ends near
   /// flicker_band(L).m_high tau0.
   std::int64_t flicker_max_taps = std::int64_t{1} << 20;
   unsigned threads = 1;             ///< worker threads (results do not depend on it)
