@@ -10,6 +10,7 @@
 
 #include "log_options.hpp"
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/allan_segments.hpp"
 #include "sigmatau/allan_stream.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/error.hpp"
@@ -119,7 +120,12 @@ std::string render_table(const LoadedChannels& loaded, std::size_t samples, cons
                          const OutputUnit& unit) {
   std::ostringstream out;
   out << "# " << loaded.log.path << ": " << samples << " samples at "
-      << loaded.rate_hz << " Hz, kind " << to_string(loaded.kind) << "\n";
+      << loaded.rate_hz << " Hz, kind " << to_string(loaded.kind);
+  if (loaded.log.timing.segment_starts.size() > 1) {
+    out << ", " << loaded.log.timing.segment_starts.size()
+        << " contiguous segments pooled (--gaps split)";
+  }
+  out << "\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
       const auto& curve = curves[c][s];
@@ -190,6 +196,7 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
                               {"jitter_s", t.jitter_s},
                               {"non_increasing", t.non_increasing},
                               {"gaps", gaps}};
+    if (!t.segment_starts.empty()) doc["input"]["timing"]["segment_starts"] = t.segment_starts;
   }
   doc["results"] = nlohmann::json::array();
   for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -270,6 +277,23 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   return curves;
 }
 
+/// --gaps split with more than one segment: every contiguous segment of each channel is its own
+/// series and their results are pooled (allan_segments.hpp), so no difference spans a gap. The
+/// raw samples are released as the series are built.
+std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
+                                                  const std::vector<Statistic>& stats,
+                                                  const TauSpec& taus, LoadedChannels& loaded) {
+  const auto ranges =
+      segment_ranges(loaded.log.timing.segment_starts,
+                     static_cast<std::int64_t>(loaded.log.channels.front().size()));
+  std::vector<std::vector<PhaseSeries>> channels;
+  for (auto& channel : loaded.log.channels) {
+    channels.push_back(segment_series(channel, ranges, loaded.kind, 1.0 / loaded.rate_hz));
+    std::vector<double>().swap(channel);
+  }
+  return compute_segmented_allan_curves(channels, stats, taus, args.ci, args.threads);
+}
+
 void run_adev(const AdevArguments& args) {
   std::vector<Statistic> stats;
   for (const auto& name : split_list(args.statistics, "--stat")) stats.push_back(parse_statistic(name));
@@ -308,8 +332,14 @@ void run_adev(const AdevArguments& args) {
   std::vector<std::vector<AllanCurve>> curves;
   if (stream) {
     curves = run_stream(args, stats, taus, loaded, samples, partial_error);
+    if (loaded.log.timing.segment_starts.size() > 1) {
+      throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
+                  "(" + std::to_string(loaded.log.timing.segment_starts.size()) + " segments)");
+    }
+  } else if (loaded = load_channels(args.log); loaded.log.timing.segment_starts.size() > 1) {
+    samples = loaded.log.channels.front().size();
+    curves = split_curves(args, stats, taus, loaded);
   } else {
-    loaded = load_channels(args.log);
     samples = loaded.log.channels.front().size();
     std::vector<PhaseSeries> series;
     series.reserve(loaded.log.channels.size());
