@@ -28,6 +28,10 @@ std::int64_t kept_noise_threshold(Statistic statistic) {
 
 }  // namespace
 
+std::int64_t previous_tau_noise_threshold(Statistic statistic) {
+  return kept_noise_threshold(statistic);
+}
+
 std::int64_t record_points(const PhaseSeries& series) {
   return series.kind() == DataKind::phase ? series.size() : series.size() - 1;
 }

@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/allan_segments.hpp"
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/units.hpp"
 #include "sigmatau/error.hpp"
@@ -298,13 +299,41 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     results["input"]["timing"] = nullptr;
   }
 
-  // Allan curves, channel-parallel.
-  std::vector<PhaseSeries> series;
-  for (const auto& c : input.channels) {
-    series.push_back(PhaseSeries::from_samples(c.values, input.kind, 1.0 / input.rate_hz));
+  // --gaps split: the contiguous segments left after the trim. Curves and PSD are computed per
+  // segment and pooled (allan_segments.hpp), so no difference or PSD window spans a gap.
+  std::vector<SegmentRange> segments;
+  if (input.timing && input.timing->segment_starts.size() > 1) {
+    segments = segment_ranges(input.timing->segment_starts, samples_in, trim_samples);
+    json list = json::array();
+    for (const auto& r : segments) {
+      list.push_back({{"first_sample", r.begin}, {"samples", r.size()},
+                      {"duration_s", static_cast<double>(r.size()) / input.rate_hz}});
+    }
+    results["input"]["segments"] = list;
   }
-  const auto curves = compute_allan_curves(series, options.statistics, options.taus,
-                                           options.confidence, options.threads);
+  const bool split = segments.size() > 1;
+
+  // Allan curves, channel-parallel.
+  std::vector<std::vector<AllanCurve>> curves;
+  if (split) {
+    std::vector<std::vector<PhaseSeries>> channel_segments;
+    for (const auto& c : input.channels) {
+      channel_segments.push_back(segment_series(c.values, segments, input.kind, 1.0 / input.rate_hz));
+    }
+    curves = compute_segmented_allan_curves(channel_segments, options.statistics, options.taus,
+                                            options.confidence, options.threads);
+    if (options.dynamic_windows > 0) {
+      warnings.push_back("--gaps split: the dynamic Allan windows are taken over the segments "
+                         "joined end to end, so a window may span a gap");
+    }
+  } else {
+    std::vector<PhaseSeries> series;
+    for (const auto& c : input.channels) {
+      series.push_back(PhaseSeries::from_samples(c.values, input.kind, 1.0 / input.rate_hz));
+    }
+    curves = compute_allan_curves(series, options.statistics, options.taus, options.confidence,
+                                  options.threads);
+  }
 
   // PSD and noise density per channel.
   results["channels"] = json::array();
@@ -343,9 +372,21 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       }
       entry["dynamic"] = {{"window_s", static_cast<double>(length) / input.rate_hz}, {"windows", windows}};
     }
-    const auto rate = as_rate(channel.values, input.kind, input.rate_hz);
+    // Rates per contiguous segment (one segment unless split): Welch windows stay inside one.
+    std::vector<std::vector<double>> rates;
+    if (split) {
+      for (const auto& r : segments) {
+        const std::vector<double> part(channel.values.begin() + r.begin,
+                                       channel.values.begin() + r.end);
+        rates.push_back(as_rate(part, input.kind, input.rate_hz));
+      }
+    } else {
+      rates.push_back(as_rate(channel.values, input.kind, input.rate_hz));
+    }
     try {
-      const PsdCurve psd = welch_psd(rate, input.rate_hz, options.welch);
+      const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());
+      const PsdCurve psd = split ? welch_psd_stretches(stretches, input.rate_hz, options.welch)
+                                 : welch_psd(rates.front(), input.rate_hz, options.welch);
       const NoiseDensity nd = noise_density(psd, std::nullopt, options.confidence);
       entry["psd"] = psd_json(log_binned(psd, options.psd_bins_per_decade), nd, si_rate_unit(channel.role));
     } catch (const Error& e) {
@@ -370,7 +411,9 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     fit_options.confidence_level = options.confidence;
     CurveSource source;
     source.tau0_s = 1.0 / input.rate_hz;
-    source.n_phase_points = series[c].size();
+    // Split: the segments' samples counted as one record (the fit's OAVAR covariance assumes
+    // one contiguous series; pooled segments have slightly fewer terms at long tau).
+    source.n_phase_points = samples + 1 - (input.kind == DataKind::phase ? 1 : 0);
     source.flicker_taps = options.flicker_taps;
     try {
       const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);

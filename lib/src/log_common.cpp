@@ -340,8 +340,9 @@ void TimingAccumulator::finish() {
             (classified_.gap_count > 0
                  ? " and " + std::to_string(classified_.gap_count) + " gap(s)"
                  : std::string()) +
-            "; use --gaps split to analyse the pieces apart (a logger restart), or fix the time "
-            "column (--time-column, --time-unit)");
+            "; use --gaps split to analyse the pieces apart (a logger restart), fix the time "
+            "column (--time-column, --time-unit), or use --gaps report to analyse the rows as "
+            "if contiguous");
   }
   throw ParseError(
       file_, first->line, 0,
@@ -352,8 +353,9 @@ void TimingAccumulator::finish() {
           (classified_.gap_count == 1 ? "" : "s") + " in all, the largest " +
           ms(classified_.largest_gap_s) + " at line " +
           std::to_string(classified_.largest_gap_line) +
-          "; use --gaps split to analyse the contiguous segments apart, or --gaps fill to "
-          "interpolate the missing samples");
+          "; use --gaps split to analyse the contiguous segments apart, --gaps fill to "
+          "interpolate the missing samples, or --gaps report to analyse the log as if "
+          "contiguous");
 }
 
 TimingReport TimingAccumulator::report() const {

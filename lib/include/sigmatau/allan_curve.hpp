@@ -23,6 +23,10 @@ double totvar_bias(int alpha, std::int64_t m, const PhaseSeries& series);
 /// phase input (used by totvar_bias and by TOTDEV's EDF).
 std::int64_t record_points(const PhaseSeries& series);
 
+/// Averages K = floor((N-1)/m) at or below which compute_allan_curve keeps the previous tau's
+/// noise type (Stable32's convention): 9 for adev and hdev, 3 for totdev, 7 otherwise.
+std::int64_t previous_tau_noise_threshold(Statistic statistic);
+
 /// One point: the deviation and its confidence interval (in the series' rate unit; TDEV in its
 /// phase unit).
 struct CurvePoint {
