@@ -47,8 +47,8 @@ enum class NonFinitePolicy {
 /// What to do with gaps in the time column (intervals > 1.5 nominal intervals) and with
 /// non-increasing (duplicated or backwards) stamps. Without a time column there is nothing to do.
 enum class GapPolicy {
-  report,  ///< count and report them in TimingReport only (LogOptions default for now; the CLI's
-           ///< --gaps default is meant to become `error`)
+  report,  ///< count and report them in TimingReport only (the LogOptions default: a library
+           ///< caller decides; the CLI's --gaps default is `error`)
   error,   ///< ParseError once the input is read, at the line of the first gap or non-increasing
            ///< stamp (whichever comes first), with its length, the counts, and the options to use
   split,   ///< TimingReport::segment_starts lists where the contiguous segments begin (every gap
