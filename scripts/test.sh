@@ -1,22 +1,68 @@
 #!/usr/bin/env bash
-# README command 2: install what is missing, build, run every test.
-# SIGMATAU_SANITIZE_STAGE=1 adds the sanitizer stage: the whole suite again built with
-# AddressSanitizer + UBSan (SIGMATAU_SANITIZE) in build-asan/, tests labelled `sanitize_skip`
-# left out. It is opt-in for now: measured at ~9 + 7 min on top of the ~8-10 min plain run on
-# 2 cores, it does not fit CI's 20-minute budget yet (issue 9).
+# README command 2: install what is missing, build, run every test: each test once, and every unit
+# test under AddressSanitizer + UBSan.
+#
+# Two builds share the work so that the whole run fits CI's 20 minutes on 2 cores:
+#  1. build/ (plain Release): the library, the CLI, the benchmarks (compiled, not run) and the unit
+#     tests labelled `sanitize_skip` (tests/CMakeLists.txt says why each one is); it runs the CLI
+#     cases, the install test and those unit tests. Release is what users run, so the CLI's
+#     behaviour (exit codes, messages, outputs) is checked on it.
+#  2. build-asan/ (SIGMATAU_SANITIZE: -fsanitize=address,undefined, -O1, no debug info): the
+#     library and every other unit test (tests/test_*.cpp), run there and only there.
+# Neither build compiles or runs what the other covers (before, both built and ran everything:
+# ~25 min on 2 cores). SIGMATAU_TEST_STAGES=plain or =asan runs one stage only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh test
-scripts/build.sh
-ctest --test-dir build --output-on-failure -j "$(nproc)"
+jobs="$(nproc)"
+stages="${SIGMATAU_TEST_STAGES:-plain asan}"
+start=$SECONDS
+elapsed() { echo "test.sh: $1 done at $((SECONDS - start)) s" >&2; }
 
-if [[ "${SIGMATAU_SANITIZE_STAGE:-0}" == 1 ]]; then
-  # -O1: ASan's recommended level, and it compiles much faster than -O3 under instrumentation.
+scripts/install-deps.sh test
+
+# Unit tests are the executables built from tests/test_*.cpp (CTest names them the same).
+unit_tests=()
+for f in tests/test_*.cpp; do unit_tests+=("$(basename "$f" .cpp)"); done
+is_unit_test() { [[ " ${unit_tests[*]} " == *" $1 "* ]]; }
+
+if [[ " $stages " == *" plain "* ]]; then
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  # Every build target except the unit tests that run sanitized (the target list from Ninja's
+  # `help`, minus CMake's own utility targets).
+  skip=$(ctest --test-dir build -N -L sanitize_skip | sed -n 's/^ *Test *#[0-9]*: *//p')
+  targets=()
+  while IFS= read -r t; do
+    case "$t" in
+      test | edit_cache | rebuild_cache | list_install_components | install | *.a | *.so | \
+        sigmatau_test_main) continue ;;
+    esac
+    if is_unit_test "$t" && [[ " $(echo $skip) " != *" $t "* ]]; then continue; fi
+    targets+=("$t")
+  done < <(cmake --build build --target help | sed -n 's/^\([A-Za-z0-9_.+-]*\): phony$/\1/p')
+  cmake --build build -j "$jobs" --target "${targets[@]}"
+  elapsed "plain build"
+  # Everything that is not a unit test, then the unit tests kept out of the sanitized stage.
+  ctest --test-dir build --output-on-failure -j "$jobs" -E '^test_'
+  ctest --test-dir build --output-on-failure -j "$jobs" -R '^test_' -L sanitize_skip
+  elapsed "plain tests"
+fi
+
+if [[ " $stages " == *" asan "* ]]; then
+  # -O1: ASan's recommended level, and it compiles much faster than -O3 under instrumentation;
+  # no -g (Release flags replaced): reports name functions, not lines (rebuild with -g to debug).
+  # NDEBUG is not set, so SIGMATAU_ASSERT is checked too.
   cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1" \
     -DSIGMATAU_SANITIZE=ON -DSIGMATAU_BUILD_BENCH=OFF >/dev/null
-  cmake --build build-asan -j "$(nproc)"
+  asan_targets=()
+  skip=$(ctest --test-dir build-asan -N -L sanitize_skip | sed -n 's/^ *Test *#[0-9]*: *//p')
+  for t in "${unit_tests[@]}"; do
+    [[ " $(echo $skip) " == *" $t "* ]] || asan_targets+=("$t")
+  done
+  cmake --build build-asan -j "$jobs" --target "${asan_targets[@]}"
+  elapsed "sanitized build"
   # detect_leaks=0: LeakSanitizer needs ptrace, which CI containers often forbid; ASan's memory
   # errors and UBSan (halt on the first report) are what this stage is for.
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE sanitize_skip
+    ctest --test-dir build-asan --output-on-failure -j "$jobs" -R '^test_' -LE sanitize_skip
+  elapsed "sanitized unit tests"
 fi
