@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
 #include "log_options.hpp"
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/allan_stream.hpp"
 #include "sigmatau/log_reader.hpp"
@@ -67,8 +69,49 @@ std::int64_t parse_bytes(const std::string& text) {
 }
 
 /// Bytes the exact in-memory mode needs per sample and channel: the raw value (8) while reading,
-/// then the double-double phase (16) and the compact sweep copy (8) of one channel at a time.
+/// then the double-double phase (16) and the sweep copy (8) that each series keeps.
 constexpr std::int64_t kExactBytesPerSample = 32;
+
+/// Values (samples x channels) a seekable input file holds, estimated from its size: exact for
+/// raw binary, at least bytes / 4 for text (a value and its delimiter take >= 4 bytes in
+/// practice), -1 for stdin or when the size is unknown. Gzip files are counted as stored.
+std::int64_t estimated_values(const LogArguments& log) {
+  if (log.input == "-") return -1;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(log.input, ec)) return -1;
+  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(log.input, ec));
+  if (ec) return -1;
+  if (log.binary.empty()) return bytes / 4;
+  const std::int64_t size = log.binary == "i16" ? 2 : (log.binary == "f64" ? 8 : 4);
+  return bytes / size;
+}
+
+/// Exact curves from a log larger than --memory: the phase goes to temporary files (TMPDIR) and
+/// the file is read twice per group of --threads channels (lib: allan_out_of_core.hpp).
+std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
+                                                     const std::vector<Statistic>& stats,
+                                                     const TauSpec& taus, LoadedChannels& loaded,
+                                                     std::size_t& samples) {
+  const LogOptions options = log_options_from(args.log);
+  set_input_unit(args.log, loaded);
+  Progress progress;
+  OutOfCoreSettings settings;
+  settings.threads = args.threads;
+  settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+  OutOfCoreResult result = compute_allan_curves_out_of_core(
+      options, loaded.kind, loaded.to_si,
+      [&](const TimingReport& timing) {
+        return resolve_rate_hz(args.log.rate_hz, timing, args.log.input);
+      },
+      stats, taus, args.ci, settings);
+  progress.finish();
+  loaded.log.path = options.path;
+  loaded.log.channel_names = std::move(result.channel_names);
+  loaded.log.timing = std::move(result.timing);
+  loaded.rate_hz = result.rate_hz;
+  samples = static_cast<std::size_t>(result.samples);
+  return std::move(result.curves);
+}
 
 /// How deviations (computed in SI, or in the input's own unit without --unit) are printed.
 struct OutputUnit {
@@ -315,22 +358,28 @@ void run_adev(const AdevArguments& args) {
   if (args.partial && args.mode == "exact") {
     throw Error("--partial is for --mode stream (exact results need the whole log)");
   }
-  bool stream = args.mode == "stream";
-  if (args.mode == "auto" && !args.log.binary.empty() && args.log.input != "-") {
-    // Binary input: the number of samples is known from the file size.
-    std::error_code ec;
-    const auto bytes = std::filesystem::file_size(args.log.input, ec);
-    if (!ec && static_cast<std::int64_t>(bytes) / 2 * kExactBytesPerSample > memory) {
+  const bool stream = args.mode == "stream";
+  // Exact (and auto) mode on a file that would not fit --memory: exact out of core (the phase
+  // in temporary files, the file read twice). Not for --gaps split/fill with a time column
+  // (they need the whole log in memory); pipes cannot be read twice and stay in memory.
+  bool out_of_core = false;
+  if (!stream && (args.log.time_column.empty() || args.log.gaps == "error" ||
+                  args.log.gaps == "report")) {
+    const std::int64_t values = estimated_values(args.log);
+    if (values >= 0 && values > memory / kExactBytesPerSample) {
       std::cerr << "sigmatau: " << args.log.input << " needs more than --memory " << args.memory
-                << " in exact mode; using --mode stream --density " << args.density << "\n";
-      stream = true;
+                << " in memory; computing exactly out of core (temporary files in "
+                << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
+      out_of_core = true;
     }
   }
   LoadedChannels loaded;
   std::size_t samples = 0;
   std::string partial_error;
   std::vector<std::vector<AllanCurve>> curves;
-  if (stream) {
+  if (out_of_core) {
+    curves = run_out_of_core(args, stats, taus, loaded, samples);
+  } else if (stream) {
     curves = run_stream(args, stats, taus, loaded, samples, partial_error);
     if (loaded.log.timing.segment_starts.size() > 1) {
       throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
@@ -414,14 +463,14 @@ void add_adev_command(CLI::App& app) {
   command->add_option("--threads", args->threads, "worker threads (0: one per core)")
       ->capture_default_str();
   command->add_option("--mode", args->mode,
-                      "exact (whole log in memory), stream (one pass, bounded memory, strided "
-                      "overlap at long taus, honest EDF), auto (exact unless a binary input "
-                      "would need more than --memory)")
+                      "exact (in memory, or out of core in temporary files when a file would "
+                      "need more than --memory), stream (one pass, bounded memory, strided "
+                      "overlap at long taus, honest EDF; for pipes), auto (= exact)")
       ->capture_default_str();
   command->add_option("--density", args->density,
                       "stream mode: start points per tau K (stride max(1, m/K) samples)")
       ->capture_default_str();
-  command->add_option("--memory", args->memory, "memory limit for --mode auto, e.g. 1GiB")
+  command->add_option("--memory", args->memory, "memory for exact mode, e.g. 1GiB: larger files are computed out of core")
       ->capture_default_str();
   command->add_flag("--partial",
                     args->partial, "stream mode: on a read error, still write the results for "

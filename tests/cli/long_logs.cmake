@@ -45,6 +45,18 @@ sigmatau_cli_test(NAME cli_long_logs_stream_totdev EXIT 2 STDERR "totdev.*--mode
   ARGS adev ${example} --time-column t --mode stream --stat totdev)
 sigmatau_cli_test(NAME cli_long_logs_partial_needs_stream EXIT 2 STDERR "--partial is for --mode stream"
   ARGS adev ${example} --time-column t --mode exact --partial)
-# auto: a binary log larger than --memory allows is analysed in stream mode, with a note.
-sigmatau_cli_test(NAME cli_long_logs_auto_switches EXIT 2 STDERR "using --mode stream"
+# auto/exact: a file larger than --memory allows is computed exactly out of core, with a note
+# (the truncated record is still found, in the first read pass).
+sigmatau_cli_test(NAME cli_long_logs_auto_switches EXIT 2 STDERR "out of core"
   ARGS adev ${truncated} --binary f64 --channels 2 --rate 100 --memory 100K)
+# Out of core gives the in-memory numbers (the same line as cli_long_logs_exact_table; every
+# statistic is compared bit for bit in tests/test_allan_out_of_core.cpp).
+sigmatau_cli_test(NAME cli_long_logs_out_of_core_table EXIT 0
+  STDOUT "0.01 +1 +119999 +0 +9.391e\\+04 +4.972498e-02 +4.983966e-02"
+  ARGS adev ${example} --time-column t --columns gx --mode exact --memory 1K)
+sigmatau_cli_test(NAME cli_long_logs_out_of_core_note EXIT 0 STDERR "computing exactly out of core"
+  ARGS adev ${example} --time-column t --columns gx --stat ohdev,totdev --memory 1K --threads 2)
+# A pipe cannot be read twice: exact mode keeps it in memory whatever --memory says.
+sigmatau_cli_test(NAME cli_long_logs_stdin_in_memory EXIT 0
+  STDIN ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv
+  STDOUT "\"channel\": \"gy\"" ARGS adev - --time-column t --format json --memory 1K)
