@@ -2,17 +2,17 @@
 # Builds the libFuzzer harnesses (clang, ASan + UBSan) into build-fuzz/ and runs each for
 # FUZZ_SECONDS (default 60) from a seed corpus made of the test data. Crashes land in
 # build-fuzz/crashes/<harness>/; turn each into a file under tests/data/bad/ or a regression test.
-# Usage: scripts/fuzz.sh [harness...]   (default: all four)
+# Usage: scripts/fuzz.sh [harness...]   (default: all five)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh fuzz
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${FUZZ_SECONDS:-60}
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(fuzz_text_log fuzz_binary_log fuzz_units fuzz_spec)
+((${#harnesses[@]})) || harnesses=(fuzz_text_log fuzz_binary_log fuzz_units fuzz_spec fuzz_bag)
 CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSIGMATAU_FUZZ=ON \
   -DSIGMATAU_SANITIZE=ON -DSIGMATAU_BUILD_TESTS=OFF -DSIGMATAU_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target "${harnesses[@]}"
+cmake --build "$build" -j "$(nproc)" --target "${harnesses[@]}" make_bag_seeds
 
 # Seed corpora: the readers' harnesses take option bytes first (see fuzz/*.cpp).
 seed() {  # seed DIR PREFIX_BYTES FILES...
@@ -38,6 +38,7 @@ for u in "deg/s" "°/√h" "mdps/rt-Hz" "ug/sqrt(Hz)" "m/s^2" "%/°C" "LSB/(°/s
   printf '%s' "$u" >"$corpus/fuzz_units/seed$((i++))"
 done
 seed "$corpus/fuzz_spec" '' specs/*.yaml tests/data/specs/*.yaml
+"$build/fuzz/make_bag_seeds" "$corpus/fuzz_bag"  # whole small bags (a 4 kB head is no bag)
 
 status=0
 for h in "${harnesses[@]}"; do

@@ -56,7 +56,8 @@ McapOptions options(const std::string& compression = "", bool summary = true, bo
 }
 
 /// The Imu topic plus a second topic of another type, interleaved.
-std::vector<Ros2Topic> two_topics(std::size_t n, std::uint64_t seed, CdrKind cdr = CdrKind::xcdr1_le) {
+std::vector<Ros2Topic> two_topics(std::size_t n, std::uint64_t seed,
+                                  CdrKind cdr = CdrKind::xcdr1_le) {
   Ros2Topic imu;
   imu.values = test::make_imu_values(n, seed);
   imu.cdr = cdr;
@@ -114,7 +115,8 @@ std::string le64(std::uint64_t v) {
 
 }  // namespace
 
-TEST_CASE("MCAP Imu values read back bit for bit in every chunk compression, with and without summary") {
+TEST_CASE(
+    "MCAP Imu values read back bit for bit in every chunk compression, with and without summary") {
   TempDir dir;
   const auto topics = two_topics(300, 11);
   for (const std::string compression : {"", "zstd", "lz4"}) {
@@ -158,10 +160,11 @@ TEST_CASE("MCAP without chunks: messages as top-level records") {
   }
 }
 
-TEST_CASE("MCAP CDR encapsulations XCDR1 and XCDR2, little and big endian, decode the same values") {
+TEST_CASE(
+    "MCAP CDR encapsulations XCDR1 and XCDR2, little and big endian, decode the same values") {
   TempDir dir;
-  for (const CdrKind kind : {CdrKind::xcdr1_le, CdrKind::xcdr1_be, CdrKind::xcdr2_le,
-                             CdrKind::xcdr2_be}) {
+  for (const CdrKind kind :
+       {CdrKind::xcdr1_le, CdrKind::xcdr1_be, CdrKind::xcdr2_le, CdrKind::xcdr2_be}) {
     CAPTURE(static_cast<int>(kind));
     const auto topics = two_topics(90, 13, kind);
     const fs::path p = dir.file("cdr.mcap");
@@ -241,7 +244,10 @@ TEST_CASE("MCAP chunks without the selected topic are skipped by the chunk index
   auto bag_a = detail::open_mcap(p.string());
   REQUIRE(bag_a->select("/a"));
   ImuSample s;
-  const std::string msg = parse_error_of([&] { while (bag_a->next(s)) {} });
+  const std::string msg = parse_error_of([&] {
+    while (bag_a->next(s)) {
+    }
+  });
   CHECK(msg.find("chunk at byte offset " + std::to_string(last)) != std::string::npos);
 }
 
@@ -261,14 +267,17 @@ TEST_CASE("MCAP from a crashed recorder: ends cleanly at a record boundary, else
     REQUIRE(bag->select("/imu/data"));
     std::vector<ImuSample> got;
     ImuSample s;
-    const std::string msg = parse_error_of([&] { while (bag->next(s)) got.push_back(s); });
+    const std::string msg = parse_error_of([&] {
+      while (bag->next(s)) got.push_back(s);
+    });
     CHECK(msg.find("truncated record at byte offset " + std::to_string(last)) != std::string::npos);
     CHECK(msg.find("cut short") != std::string::npos);
     // Every message of the complete chunks came out first.
     CHECK(got.size() > 0);
     CHECK(got.size() < topics[0].values.size());
-    std::vector<ImuValue> prefix(topics[0].values.begin(),
-                                 topics[0].values.begin() + static_cast<std::ptrdiff_t>(got.size()));
+    std::vector<ImuValue> prefix(
+        topics[0].values.begin(),
+        topics[0].values.begin() + static_cast<std::ptrdiff_t>(got.size()));
     check_same(got, prefix);
   }
 }
@@ -308,7 +317,7 @@ TEST_CASE("MCAP corrupt files give a ParseError naming the byte offset") {
     o.crc = false;
     const auto layout = test::write_mcap(p, topics, o);
     const std::int64_t chunk = layout.chunk_offsets[0];
-    const std::int64_t records = chunk + 9 + 32 + 8;  // compression "" has no name bytes
+    const std::int64_t records = chunk + 9 + 32 + 8;      // compression "" has no name bytes
     patch(p, records + 1, le64(std::uint64_t{1} << 30));  // the first record's length
     expect = "record at byte offset " + std::to_string(records);
   }
@@ -372,4 +381,23 @@ TEST_CASE("MCAP a file that is no MCAP is refused at byte offset 0") {
   std::ofstream(p) << "#ROSBAG V2.0\nnot an mcap file at all";
   const std::string msg = parse_error_of([&] { detail::open_mcap(p.string()); });
   CHECK(msg.find("not an MCAP file: byte offset 0") != std::string::npos);
+}
+
+TEST_CASE(
+    "MCAP compressed as a whole (.mcap.zstd, rosbag2 file compression) is refused with advice") {
+  TempDir dir;
+  const fs::path plain = dir.file("plain.mcap");
+  test::write_mcap(plain, two_topics(30, 23));
+  std::ifstream in(plain, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const fs::path p = dir.file("imu.mcap.zstd");
+  test::writer_detail::write_file(p, test::writer_detail::compress(bytes, "zstd"));
+  std::string msg;
+  try {
+    detail::open_mcap(p.string());
+  } catch (const Error& e) {
+    msg = e.what();
+  }
+  CHECK(msg.find("imu.mcap.zstd") != std::string::npos);
+  CHECK(msg.find("decompress it first") != std::string::npos);
 }

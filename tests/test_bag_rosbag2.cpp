@@ -31,9 +31,8 @@ class TempDir {
  public:
   TempDir() {
     static int counter = 0;
-    path_ = fs::temp_directory_path() / ("sigmatau_test_bag_rosbag2_" +
-                                         std::to_string(::getpid()) + "_" +
-                                         std::to_string(counter++));
+    path_ = fs::temp_directory_path() / ("sigmatau_test_bag_rosbag2_" + std::to_string(::getpid()) +
+                                         "_" + std::to_string(counter++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -114,8 +113,8 @@ void sql(const fs::path& db, const std::string& statement) {
 TEST_CASE("db3 Imu values read back bit for bit, plain and per-message zstd, every CDR kind") {
   TempDir dir;
   for (const bool zstd : {false, true}) {
-    for (const CdrKind kind : {CdrKind::xcdr1_le, CdrKind::xcdr1_be, CdrKind::xcdr2_le,
-                               CdrKind::xcdr2_be}) {
+    for (const CdrKind kind :
+         {CdrKind::xcdr1_le, CdrKind::xcdr1_be, CdrKind::xcdr2_le, CdrKind::xcdr2_be}) {
       CAPTURE(zstd);
       CAPTURE(static_cast<int>(kind));
       const auto topics = two_topics(250, 31, kind);
@@ -172,13 +171,17 @@ TEST_CASE("db3 corrupt messages give a ParseError naming the row id") {
   }
   SUBCASE("a corrupt per-message zstd frame") {
     test::write_db3(p, two_topics(40, 35), true);
-    sql(p, "UPDATE messages SET data = CAST(substr(data, 1, 12) || zeroblob(20) AS BLOB) WHERE id = 9");
+    sql(p,
+        "UPDATE messages SET data = CAST(substr(data, 1, 12) || zeroblob(20) AS BLOB) WHERE id = "
+        "9");
     expect = "messages row id 9 at byte offset 0: corrupt zstd data";
   }
   SUBCASE("an unsupported CDR encapsulation") {
     test::write_db3(p, two_topics(40, 36));
     sql(p, "UPDATE messages SET data = CAST(X'0003' || substr(data, 3) AS BLOB) WHERE id = 5");
-    expect = "messages row id 5: 324-byte message on /imu/data is not a sensor_msgs/Imu: unsupported CDR encapsulation";
+    expect =
+        "messages row id 5: 324-byte message on /imu/data is not a sensor_msgs/Imu: unsupported "
+        "CDR encapsulation";
   }
   auto bag = detail::open_rosbag2_sqlite(p.string());
   const std::string msg = drain(*bag, "/imu/data");
@@ -191,14 +194,16 @@ TEST_CASE("db3 files that are not rosbag2 SQLite are refused clearly") {
   SUBCASE("not SQLite") {
     const fs::path p = dir.file("text.db3");
     std::ofstream(p) << "t,gx,gy,gz\n0,1,2,3\n";
-    CHECK(error_of([&] { detail::open_rosbag2_sqlite(p.string()); })
-              .find("not an SQLite database: byte offset 0") != std::string::npos);
+    CHECK(error_of([&] {
+            detail::open_rosbag2_sqlite(p.string());
+          }).find("not an SQLite database: byte offset 0") != std::string::npos);
   }
   SUBCASE("SQLite without the rosbag2 tables") {
     const fs::path p = dir.file("other.db3");
     sql(p, "CREATE TABLE t(x)");
-    CHECK(error_of([&] { detail::open_rosbag2_sqlite(p.string()); })
-              .find("not a rosbag2 recording") != std::string::npos);
+    CHECK(error_of([&] {
+            detail::open_rosbag2_sqlite(p.string());
+          }).find("not a rosbag2 recording") != std::string::npos);
   }
   SUBCASE("a whole-file zstd (compression_mode FILE) .db3.zstd") {
     const fs::path plain = dir.file("plain.db3");
@@ -247,7 +252,8 @@ TEST_CASE("rosbag2 folders of two files, sqlite3 and mcap, read in order") {
   }
 }
 
-TEST_CASE("rosbag2 folders: refusals name metadata.yaml or the file") {
+TEST_CASE(
+    "rosbag2 folders: old-style file paths resolve, refusals name metadata.yaml or the file") {
   TempDir dir;
   const auto topics = two_topics(40, 40);
   const fs::path folder = dir.file("rec");
@@ -275,8 +281,20 @@ TEST_CASE("rosbag2 folders: refusals name metadata.yaml or the file") {
     std::string y((std::istreambuf_iterator<char>(in)), {});
     y.replace(y.find("sqlite3"), 7, "hdf5");
     test::writer_detail::write_file(folder / "metadata.yaml", y);
-    CHECK(error_of([&] { detail::open_rosbag2_folder(folder.string()); })
-              .find("storage_identifier \"hdf5\"") != std::string::npos);
+    CHECK(error_of([&] {
+            detail::open_rosbag2_folder(folder.string());
+          }).find("storage_identifier \"hdf5\"") != std::string::npos);
+  }
+  SUBCASE("file names with the folder's name in front (rosbag2 before metadata version 4)") {
+    test::write_rosbag2_folder(folder, "sqlite3", topics, 2);
+    std::ifstream in(folder / "metadata.yaml");
+    std::string y((std::istreambuf_iterator<char>(in)), {});
+    for (const std::string name : {"    - rec_0.db3", "    - rec_1.db3"}) {
+      y.replace(y.find(name), name.size(), "    - rec/" + name.substr(6));
+    }
+    test::writer_detail::write_file(folder / "metadata.yaml", y);
+    auto bag = detail::open_rosbag2_folder(folder.string());
+    check_same(read_all(*bag, "/imu/data"), topics[0].values);
   }
   SUBCASE("wrong type on the topic") {
     test::write_rosbag2_folder(folder, "sqlite3", topics, 2);

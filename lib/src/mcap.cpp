@@ -89,9 +89,17 @@ struct Channel {
 
 class McapFile final : public BagBackend {
  public:
-  explicit McapFile(const std::string& path) : file_(path), selected_(65536, Encoding::unsupported) {
-    if (std::string_view(file_.view(0, sizeof kMagic, "MCAP magic"), sizeof kMagic) !=
-        std::string_view(kMagic, sizeof kMagic)) {
+  explicit McapFile(const std::string& path)
+      : file_(path), selected_(65536, Encoding::unsupported) {
+    const char* head = file_.view(0, sizeof kMagic, "MCAP magic");
+    if (is_zstd_frame(head, sizeof kMagic)) {
+      throw Error(path +
+                  ": this file is compressed as a whole with zstd (rosbag2 "
+                  "compression_mode FILE, a .mcap.zstd file) and is not read in place; "
+                  "decompress it first (zstd -d, or ros2 bag decompress) and read the "
+                  ".mcap it gives");
+    }
+    if (std::string_view(head, sizeof kMagic) != std::string_view(kMagic, sizeof kMagic)) {
       throw ParseError(file_.name(), 0, 0,
                        "not an MCAP file: byte offset 0 does not hold the MCAP magic "
                        "(89 4D 43 41 50 30 0D 0A)");
@@ -167,8 +175,8 @@ class McapFile final : public BagBackend {
 
   /// Reads the footer and, when it points to one, the summary section.
   void read_summary() {
-    const std::int64_t footer_at = file_.size() - static_cast<std::int64_t>(sizeof kMagic) -
-                                   kFooterRecordBytes;
+    const std::int64_t footer_at =
+        file_.size() - static_cast<std::int64_t>(sizeof kMagic) - kFooterRecordBytes;
     if (footer_at < data_start_) return;
     const char* tail = file_.view(footer_at, kFooterRecordBytes + sizeof kMagic, "MCAP footer");
     if (std::string_view(tail + kFooterRecordBytes, sizeof kMagic) !=
@@ -191,7 +199,8 @@ class McapFile final : public BagBackend {
                                 " lies outside the file's records");
     }
     const auto start = static_cast<std::int64_t>(summary_start);
-    const std::int64_t end = offsets_start != 0 ? static_cast<std::int64_t>(offsets_start) : footer_at;
+    const std::int64_t end =
+        offsets_start != 0 ? static_cast<std::int64_t>(offsets_start) : footer_at;
     if (summary_crc != 0) check_summary_crc(start, footer_at, summary_crc);
     for (std::int64_t pos = start; pos < end;) {
       const char* prefix = file_.view(pos, kPrefixBytes, "summary record");
@@ -293,7 +302,8 @@ class McapFile final : public BagBackend {
     if (map_bytes == 0) return;  // counts not available
     for (std::uint32_t k = 0; k < map_bytes; k += 10) {
       const auto it = channels_.find(load_le16(p + f.i + k));
-      if (it != channels_.end()) it->second.messages = static_cast<std::int64_t>(load_le64(p + f.i + k + 2));
+      if (it != channels_.end())
+        it->second.messages = static_cast<std::int64_t>(load_le64(p + f.i + k + 2));
     }
     counts_known_ = true;
   }
@@ -324,7 +334,8 @@ class McapFile final : public BagBackend {
 
   std::vector<BagTopic> topic_list(bool with_counts) const {
     std::vector<BagTopic> list;
-    for (const auto& [id, c] : channels_) {
+    for (const auto& entry : channels_) {
+      const auto& c = entry.second;  // not a structured binding: clang 14 cannot capture one
       auto it = std::find_if(list.begin(), list.end(),
                              [&](const BagTopic& t) { return t.name == c.topic; });
       if (it == list.end()) {
@@ -397,10 +408,13 @@ class McapFile final : public BagBackend {
         return false;
       case kSchema:
       case kChannel: {
-        if (len > kMaxMetaRecordBytes) bad_record(pos, "schema or channel record is implausibly long");
+        if (len > kMaxMetaRecordBytes)
+          bad_record(pos, "schema or channel record is implausibly long");
         const char* c = file_.view(body, len, "record");
-        if (op == kSchema) learn_schema(c, len, pos);
-        else learn_channel(c, len, pos);
+        if (op == kSchema)
+          learn_schema(c, len, pos);
+        else
+          learn_channel(c, len, pos);
         return true;
       }
       case kMessage: {
@@ -418,16 +432,20 @@ class McapFile final : public BagBackend {
   }
 
   void load_chunk(std::int64_t pos, std::int64_t body, std::uint64_t len) {
-    if (len < kChunkFixedBytes + 8) bad_record(pos, "chunk record of " + std::to_string(len) + " bytes is too short");
+    if (len < kChunkFixedBytes + 8)
+      bad_record(pos, "chunk record of " + std::to_string(len) + " bytes is too short");
     const char* h = file_.view(body, kChunkFixedBytes, "chunk header");
     const std::uint64_t size = load_le64(h + 16);
     const std::uint32_t crc = load_le32(h + 24);
     const std::uint32_t name_len = load_le32(h + 28);
-    if (name_len > len - kChunkFixedBytes - 8) bad_record(pos, "chunk compression name runs past the record");
-    const char* h2 = file_.view(body + static_cast<std::int64_t>(kChunkFixedBytes), name_len + 8, "chunk header");
+    if (name_len > len - kChunkFixedBytes - 8)
+      bad_record(pos, "chunk compression name runs past the record");
+    const char* h2 = file_.view(body + static_cast<std::int64_t>(kChunkFixedBytes), name_len + 8,
+                                "chunk header");
     const std::string compression(h2, name_len);
     const std::uint64_t stored = load_le64(h2 + name_len);
-    const std::int64_t records_at = body + static_cast<std::int64_t>(kChunkFixedBytes) + name_len + 8;
+    const std::int64_t records_at =
+        body + static_cast<std::int64_t>(kChunkFixedBytes) + name_len + 8;
     if (stored > len - kChunkFixedBytes - 8 - name_len) {
       bad_record(pos, "chunk records of " + std::to_string(stored) + " bytes run past the record");
     }
@@ -499,8 +517,9 @@ class McapFile final : public BagBackend {
     const std::size_t n = chunk_.size();
     const char* c = chunk_.data();
     if (n - at < kPrefixBytes) {
-      throw ParseError(file_.name(), 0, 0, "corrupt " + inner_location(at) +
-                                               ": truncated opcode and length at the chunk's end");
+      throw ParseError(
+          file_.name(), 0, 0,
+          "corrupt " + inner_location(at) + ": truncated opcode and length at the chunk's end");
     }
     const auto op = static_cast<unsigned char>(c[at]);
     const std::uint64_t len = load_le64(c + at + 1);
@@ -524,8 +543,9 @@ class McapFile final : public BagBackend {
   bool handle_message(const char* p, std::size_t n, std::int64_t where, ImuSample& s,
                       const Location& location) {
     if (n < kMessageFieldBytes) {
-      throw ParseError(file_.name(), 0, 0, "corrupt " + location() + ": message record of " +
-                                               std::to_string(n) + " bytes is too short");
+      throw ParseError(file_.name(), 0, 0,
+                       "corrupt " + location() + ": message record of " + std::to_string(n) +
+                           " bytes is too short");
     }
     const std::uint16_t id = load_le16(p);
     if (counting_) {
@@ -538,8 +558,8 @@ class McapFile final : public BagBackend {
     const char* data = p + kMessageFieldBytes;
     const std::size_t m = n - kMessageFieldBytes;
     DecodeError err;
-    const bool ok = e == Encoding::cdr ? decode_cdr_imu(data, m, s, err)
-                                       : decode_ros1_imu(data, m, s, err);
+    const bool ok =
+        e == Encoding::cdr ? decode_cdr_imu(data, m, s, err) : decode_ros1_imu(data, m, s, err);
     if (!ok) throw_bad_message(file_.name(), location(), topic_, m, err);
     s.receive_ns = static_cast<std::int64_t>(load_le64(p + 6));
     s.offset = where;
@@ -562,7 +582,7 @@ class McapFile final : public BagBackend {
   std::unordered_map<std::uint64_t, std::vector<std::uint16_t>> chunk_channels_;
   std::string topic_;
   std::vector<Encoding> selected_;  // per channel id: how to decode, or not selected
-  std::int64_t pos_ = 0;  // next top-level record
+  std::int64_t pos_ = 0;            // next top-level record
   std::vector<char> raw_, chunk_;
   std::size_t in_chunk_ = 0;
   std::int64_t chunk_pos_ = 0, chunk_data_at_ = 0;

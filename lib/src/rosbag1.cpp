@@ -286,7 +286,8 @@ class Ros1Bag final : public BagBackend {
 
   std::vector<BagTopic> topic_list(bool with_counts) const {
     std::vector<BagTopic> list;
-    for (const auto& [id, c] : conns_) {
+    for (const auto& entry : conns_) {
+      const Connection& c = entry.second;  // not a structured binding: clang 14 cannot capture one
       auto it = std::find_if(list.begin(), list.end(),
                              [&](const BagTopic& t) { return t.name == c.topic; });
       if (it == list.end()) {

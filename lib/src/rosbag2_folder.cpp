@@ -26,11 +26,13 @@ namespace fs = std::filesystem;
 
 class Rosbag2Folder final : public BagBackend {
  public:
-  explicit Rosbag2Folder(const std::string& dir) : dir_(dir), yaml_((fs::path(dir) / "metadata.yaml").string()) {
+  explicit Rosbag2Folder(const std::string& dir)
+      : dir_(dir), yaml_((fs::path(dir) / "metadata.yaml").string()) {
     if (!fs::is_regular_file(yaml_)) {
-      throw Error(dir + ": no metadata.yaml in this folder (a recording that was not closed "
-                        "cleanly has none): read its .db3 or .mcap files one by one instead, or "
-                        "run `ros2 bag reindex` on it");
+      throw Error(dir +
+                  ": no metadata.yaml in this folder (a recording that was not closed "
+                  "cleanly has none): read its .db3 or .mcap files one by one instead, or "
+                  "run `ros2 bag reindex` on it");
     }
     YAML::Node root;
     try {
@@ -106,7 +108,8 @@ class Rosbag2Folder final : public BagBackend {
     const auto it = std::find_if(topics_.begin(), topics_.end(),
                                  [&](const BagTopic& t) { return t.name == topic; });
     if (it == topics_.end()) return false;
-    if (!is_imu_type(it->type)) throw_wrong_type(yaml_, "topics_with_message_count", topic, it->type);
+    if (!is_imu_type(it->type))
+      throw_wrong_type(yaml_, "topics_with_message_count", topic, it->type);
     return true;
   }
 

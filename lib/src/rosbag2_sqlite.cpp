@@ -35,9 +35,8 @@ std::string file_uri(const std::string& path) {
   std::string uri = "file:";
   for (const char ch : absolute) {
     const auto c = static_cast<unsigned char>(ch);
-    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                       (c >= '0' && c <= '9') || c == '/' || c == '.' || c == '_' || c == '~' ||
-                       c == '-';
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                       c == '/' || c == '.' || c == '_' || c == '~' || c == '-';
     if (plain) {
       uri += ch;
     } else {
@@ -64,9 +63,10 @@ class Rosbag2Sqlite final : public BagBackend {
       const std::size_t n = static_cast<std::size_t>(std::min<std::int64_t>(size_, 16));
       const char* head = probe.view(0, n, "SQLite header");
       if (is_zstd_frame(head, n)) {
-        throw Error(path + ": this file is compressed as a whole with zstd (rosbag2 "
-                           "compression_mode FILE) and cannot be read in place; decompress it "
-                           "first (zstd -d, or ros2 bag decompress) and read the .db3 it gives");
+        throw Error(path +
+                    ": this file is compressed as a whole with zstd (rosbag2 "
+                    "compression_mode FILE) and cannot be read in place; decompress it "
+                    "first (zstd -d, or ros2 bag decompress) and read the .db3 it gives");
       }
       if (std::string_view(head, n) != kSqliteMagic) {
         throw ParseError(path, 0, 0,
@@ -76,9 +76,8 @@ class Rosbag2Sqlite final : public BagBackend {
     }
     const std::string uri = file_uri(path);
     sqlite3* db = nullptr;
-    const int rc = sqlite3_open_v2(uri.c_str(), &db,
-                                   SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
-                                   nullptr);
+    const int rc = sqlite3_open_v2(
+        uri.c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX, nullptr);
     db_.reset(db);
     if (rc != SQLITE_OK) {
       throw Error(path + ": cannot open as SQLite database: " +
@@ -159,8 +158,8 @@ class Rosbag2Sqlite final : public BagBackend {
     last_id_ = id;
     const std::string where = "messages row id " + std::to_string(id);
     if (blob != nullptr && is_zstd_frame(blob, n)) {
-      decompress_zstd_frame(std::string_view(blob, n), inflated_, file_,
-                            0, ("the zstd-compressed data of " + where).c_str());
+      decompress_zstd_frame(std::string_view(blob, n), inflated_, file_, 0,
+                            ("the zstd-compressed data of " + where).c_str());
       blob = inflated_.data();
       n = inflated_.size();
     }
@@ -177,10 +176,9 @@ class Rosbag2Sqlite final : public BagBackend {
   std::int64_t bytes_read() const override {
     if (done_ || max_id_ <= 0) return done_ ? size_ : 0;
     // Row ids grow with the file as it is written: the share of ids passed estimates progress.
-    return static_cast<std::int64_t>(static_cast<double>(size_) *
-                                     std::clamp(static_cast<double>(last_id_) /
-                                                    static_cast<double>(max_id_),
-                                                0.0, 1.0));
+    return static_cast<std::int64_t>(
+        static_cast<double>(size_) *
+        std::clamp(static_cast<double>(last_id_) / static_cast<double>(max_id_), 0.0, 1.0));
   }
   std::int64_t total_bytes() const override { return size_; }
 
@@ -204,7 +202,8 @@ class Rosbag2Sqlite final : public BagBackend {
 
   [[noreturn]] void fail(const std::string& doing) const {
     std::string why = sqlite3_errmsg(db_.get());
-    if (sqlite3_errcode(db_.get()) == SQLITE_ERROR && why.find("no such table") != std::string::npos) {
+    if (sqlite3_errcode(db_.get()) == SQLITE_ERROR &&
+        why.find("no such table") != std::string::npos) {
       why += " (not a rosbag2 recording: it needs the tables topics and messages)";
     }
     std::string where;
@@ -239,7 +238,8 @@ class Rosbag2Sqlite final : public BagBackend {
   std::string file_;
   std::int64_t size_ = 0;
   std::unique_ptr<sqlite3, int (*)(sqlite3*)> db_{nullptr, sqlite3_close};
-  std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt_{nullptr, sqlite3_finalize};  // after db_
+  std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt_{nullptr,
+                                                              sqlite3_finalize};  // after db_
   std::vector<Topic> topics_;
   bool counted_ = false;
   bool ros1_ = false;

@@ -146,12 +146,12 @@ inline std::vector<std::pair<std::size_t, std::size_t>> interleave(
 }
 
 struct McapOptions {
-  std::string compression;         ///< "", "zstd", "lz4"; anything else is written uncompressed
+  std::string compression;  ///< "", "zstd", "lz4"; anything else is written uncompressed
   bool chunked = true;
   std::size_t chunk_messages = 40;  ///< messages per chunk
-  bool summary = true;             ///< summary section (schemas, channels, chunk indexes, stats)
-  bool footer = true;              ///< Data End, summary and footer (false: a crashed recorder)
-  bool crc = true;                 ///< chunk uncompressed_crc
+  bool summary = true;              ///< summary section (schemas, channels, chunk indexes, stats)
+  bool footer = true;               ///< Data End, summary and footer (false: a crashed recorder)
+  bool crc = true;                  ///< chunk uncompressed_crc
 };
 
 /// Where the writer put things, for tests that corrupt the file.
@@ -207,8 +207,8 @@ inline void write_file(const std::filesystem::path& path, const std::string& byt
 }  // namespace writer_detail
 
 /// Writes an MCAP file (profile ros2) holding `topics` (channel and schema ids 1, 2, ...).
-inline McapLayout write_mcap(const std::filesystem::path& path, const std::vector<Ros2Topic>& topics,
-                             const McapOptions& opt = {}) {
+inline McapLayout write_mcap(const std::filesystem::path& path,
+                             const std::vector<Ros2Topic>& topics, const McapOptions& opt = {}) {
   using namespace writer_detail;
   static const char kMagic[8] = {'\x89', 'M', 'C', 'A', 'P', '0', '\r', '\n'};
   McapLayout layout;
@@ -301,7 +301,8 @@ inline McapLayout write_mcap(const std::filesystem::path& path, const std::vecto
     put<std::uint16_t>(m, static_cast<std::uint16_t>(k + 1));
     put<std::uint32_t>(m, static_cast<std::uint32_t>(i));
     put<std::uint64_t>(m, log_time);
-    put<std::uint64_t>(m, log_time);
+    // publish_time differs from log_time, so a reader taking the wrong one fails the tests.
+    put<std::uint64_t>(m, static_cast<std::uint64_t>(v.header_ns) + 1);
     m += encode_message(topics[k], v);
     if (opt.chunked) {
       if (in_chunk == 0) t_min = t_max = log_time;
@@ -355,8 +356,7 @@ inline McapLayout write_mcap(const std::filesystem::path& path, const std::vecto
     const std::size_t footer_at = f.size();
     put_record(f, 0x02, footer + std::string(4, '\0'));
     if (summary_start != 0) {
-      const std::uint32_t crc =
-          crc32(f.data() + summary_start, f.size() - 4 - summary_start);
+      const std::uint32_t crc = crc32(f.data() + summary_start, f.size() - 4 - summary_start);
       std::string c;
       put<std::uint32_t>(c, crc);
       f.replace(footer_at + 9 + 16, 4, c);
@@ -383,11 +383,12 @@ inline void write_db3(const std::filesystem::path& path, const std::vector<Ros2T
       throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(db));
     }
   };
-  exec("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
-       "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
-       "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, "
-       "timestamp INTEGER NOT NULL, data BLOB NOT NULL);"
-       "BEGIN;");
+  exec(
+      "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+      "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, "
+      "timestamp INTEGER NOT NULL, data BLOB NOT NULL);"
+      "BEGIN;");
   sqlite3_stmt* st = nullptr;
   sqlite3_prepare_v2(db, "INSERT INTO topics VALUES(?, ?, ?, ?, '')", -1, &st, nullptr);
   for (std::size_t k = 0; k < topics.size(); ++k) {
@@ -399,8 +400,8 @@ inline void write_db3(const std::filesystem::path& path, const std::vector<Ros2T
     sqlite3_reset(st);
   }
   sqlite3_finalize(st);
-  sqlite3_prepare_v2(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1,
-                     &st, nullptr);
+  sqlite3_prepare_v2(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1, &st,
+                     nullptr);
   for (const auto& [k, i] : interleave(topics)) {
     const ImuValue& v = topics[k].values[i];
     std::string data = encode_message(topics[k], v);
@@ -429,9 +430,9 @@ inline void write_rosbag2_folder(const std::filesystem::path& dir, const std::st
     std::vector<Ros2Topic> part = topics;
     for (std::size_t k = 0; k < topics.size(); ++k) {
       const std::size_t n = topics[k].values.size();
-      part[k].values.assign(topics[k].values.begin() + static_cast<std::ptrdiff_t>(n * f / files),
-                            topics[k].values.begin() +
-                                static_cast<std::ptrdiff_t>(n * (f + 1) / files));
+      part[k].values.assign(
+          topics[k].values.begin() + static_cast<std::ptrdiff_t>(n * f / files),
+          topics[k].values.begin() + static_cast<std::ptrdiff_t>(n * (f + 1) / files));
     }
     const std::string name =
         base + "_" + std::to_string(f) + (storage == "mcap" ? ".mcap" : ".db3");

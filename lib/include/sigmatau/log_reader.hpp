@@ -22,7 +22,9 @@
 /// metadata.yaml and its .db3/.mcap files. They are recognised by their magic bytes or extension
 /// (or by being a folder with metadata.yaml). A bag yields the sensor_msgs/Imu messages of one
 /// topic as channels gx, gy, gz (angular_velocity [rad/s]) and ax, ay, az (linear_acceleration
-/// [m/s^2]) with a time column from header.stamp (or the receive time, LogOptions::stamp).
+/// [m/s^2]) with a time column from header.stamp (or the receive time, LogOptions::stamp). For a
+/// bag, SampleBlock::t_s counts from the stamp of the first message delivered (so nanosecond
+/// epoch stamps keep nanosecond resolution in the double).
 /// Memory stays bounded by one chunk (a few MiB in practice) plus the reorder window.
 
 #include <cstdint>
