@@ -122,19 +122,30 @@ SimulationConfig gyro_config(const NoiseTerms& terms, std::uint64_t seed) {
   return c;
 }
 
-/// The statistical check of the file comment for one noise model (3 gyro axes share `terms`).
-void check_matches_theory(const NoiseTerms& terms) {
+/// The theoretical AVAR of a real quantizer of step q: its additive equivalent 3 Q^2 / tau^2 with
+/// Q = q / sqrt(12), i.e. q^2 / (4 tau^2) (valid when the other noise dithers it, see below).
+double quantizer_avar(double step, std::int64_t m) {
+  const double tau = static_cast<double>(m) * kTau0;
+  return step * step / (4 * tau * tau);
+}
+
+/// The statistical check of the file comment for one noise model (3 gyro axes share `terms`),
+/// optionally through a real quantizer of `quantizer_step` [rad].
+void check_matches_theory(const NoiseTerms& terms, double quantizer_step = 0) {
   const auto ms = octave_factors(kSamples);
   const Sampling sampling = sampling_of(gyro_config(terms, 1));
   const int allowed = failure_count();
   std::vector<int> outside(ms.size(), 0);
   std::vector<double> pooled(ms.size(), 0.0);
   for (int seed = 1; seed <= kSeeds; ++seed) {
-    const auto data = run(gyro_config(terms, static_cast<std::uint64_t>(seed)));
+    SimulationConfig c = gyro_config(terms, static_cast<std::uint64_t>(seed));
+    c.gyro_quantizer_step = quantizer_step;
+    const auto data = run(c);
     for (int axis = 0; axis < 3; ++axis) {
       const auto est = oavar(data, 3, axis, ms);
       for (std::size_t i = 0; i < ms.size(); ++i) {
-        const double theory = sampled_avar(terms, ms[i], sampling);
+        const double theory = sampled_avar(terms, ms[i], sampling) +
+                              (quantizer_step > 0 ? quantizer_avar(quantizer_step, ms[i]) : 0);
         const double edf = conservative_edf(ms[i], kSamples + 1);
         const boost::math::chi_squared chi(edf);
         // est * edf / theory ~ chi^2(edf): inside when between the 0.5% and 99.5% quantiles.
@@ -148,7 +159,9 @@ void check_matches_theory(const NoiseTerms& terms) {
   }
   for (std::size_t i = 0; i < ms.size(); ++i) {
     INFO("m = " << ms[i] << ": pooled OAVAR " << pooled[i] << ", theory "
-                << sampled_avar(terms, ms[i], sampling) << ", outside the 99% interval in "
+                << sampled_avar(terms, ms[i], sampling) +
+                       (quantizer_step > 0 ? quantizer_avar(quantizer_step, ms[i]) : 0)
+                << ", outside the 99% interval in "
                 << outside[i] << " of " << kRealizations << " (fail at " << allowed << ")");
     CHECK(outside[i] < allowed);
   }
@@ -182,6 +195,39 @@ TEST_CASE("the sum of every term matches the sum of the exact AVARs") {
   t.rate_ramp = 1e-7;
   t.sinusoid = Sinusoid{2e-5, 1.3, 0.4};
   check_matches_theory(t);
+}
+
+TEST_CASE("a real quantizer adds 3 Q^2 / tau^2 with Q = step / sqrt(12) at small tau") {
+  // White noise of per-sample angle increment N sqrt(tau0) = 1e-4 rad against a step of 3e-5
+  // rad: the increment spans 3.3 steps (1 sigma), so the carried rounding error is uniform and
+  // independent from sample to sample up to exp(-2 pi^2 3.3^2) ~ 1e-93 (the characteristic
+  // function of the normal at the step's first harmonic): the additive-equivalent AVAR
+  // N^2/tau + 3 Q^2/tau^2 is then exact, and the quantizer dominates for tau < 0.06 s here.
+  NoiseTerms t;
+  t.white = 1e-3;
+  const double step = 3e-5;
+  check_matches_theory(t, step);
+  // Every increment is a whole number of steps, and the quantized angle stays within half a
+  // step of the unquantized one (the carried residual never grows).
+  SimulationConfig c = gyro_config(t, 4);
+  c.kind = OutputKind::increment;
+  c.samples = 20000;
+  const auto exact = run(c);
+  c.gyro_quantizer_step = step;
+  const auto quantized = run(c, 999);
+  long double angle = 0, quantized_angle = 0, worst = 0;
+  for (std::size_t i = 0; i < quantized.size(); i += 3) {
+    const double steps = quantized[i] / step;
+    REQUIRE(std::abs(steps - std::nearbyint(steps)) < 1e-6);  // rounding of steps * step / step
+    angle += exact[i];
+    quantized_angle += quantized[i];
+    worst = std::max(worst, std::abs(angle - quantized_angle));
+  }
+  // Half a step plus the initial residual (also at most half a step).
+  CHECK(static_cast<double>(worst) <= step * (1 + 1e-9));
+  c.kind = OutputKind::counts;
+  c.gyro_counts = CountsFormat{1e-3, 1.0};
+  CHECK_THROWS_WITH_AS(Simulator{c}, doctest::Contains("quantizer"), Error);
 }
 
 TEST_CASE("a ramp alone gives OADEV = R tau / sqrt(2) exactly") {

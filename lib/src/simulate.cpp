@@ -27,6 +27,8 @@ constexpr std::int64_t kChunk = std::int64_t{1} << 16;
 const double kUniformWidthPerQ = std::sqrt(12.0);
 /// Longest flicker filter accepted (2^28 taps: 2 GiB of FFT scratch per thread).
 constexpr std::int64_t kMaxFlickerTaps = std::int64_t{1} << 28;
+/// Stream number of the real quantizer's initial residual (after the NoiseTerm streams).
+constexpr int kQuantizerStream = static_cast<int>(kAllNoiseTerms.size());
 /// The sinusoid recurrence restarts from std::sin/cos every this many samples (see generate).
 constexpr std::int64_t kSinusoidRestart = 1024;
 
@@ -48,6 +50,8 @@ struct Channel {
   double rw = 0;      // random-walk value b_{k-1}
   double gm = 0;      // Gauss-Markov value g_{k-1}
   double e_prev = 0;  // quantization error e_{k-1}
+  double quantizer_step = 0;      // real quantizer step [rad | m/s] (0: none)
+  double quantizer_residual = 0;  // integrated output minus its quantized value [rad | m/s]
   std::vector<double> flicker;  // current flicker block pair (unit innovation)
   std::int64_t flicker_block = -1;  // its pair index
   std::vector<double> values;   // the current chunk
@@ -128,6 +132,20 @@ void validate(const SimulationConfig& c) {
       c.flicker_max_taps > kMaxFlickerTaps)
     throw Error("simulation: flicker_max_taps must be a power of two in [4096, 2^28], got " +
                 std::to_string(c.flicker_max_taps));
+  for (const auto& [step, what] : {std::pair{c.gyro_quantizer_step, "gyro"},
+                                    std::pair{c.accel_quantizer_step, "accel"}}) {
+    if (!(step >= 0) || !std::isfinite(step))
+      throw Error(std::string("simulation: the ") + what + " quantizer step must be >= 0");
+    if (step > 0 && c.kind == OutputKind::counts)
+      throw Error(std::string("simulation: a ") + what +
+                  " quantizer step and counts output both quantize; use one of them");
+  }
+  for (const auto& [unit, what] : {std::pair{&c.gyro_unit, "gyro"}, std::pair{&c.accel_unit, "accel"}}) {
+    if (!(unit->factor > 0) || !std::isfinite(unit->factor))
+      throw Error(std::string("simulation: the ") + what + " output unit factor must be > 0");
+    if (c.kind == OutputKind::counts && unit->factor != 1)
+      throw Error("simulation: counts output is in counts; an output unit does not apply");
+  }
   if (c.kind == OutputKind::counts) {
     const auto check = [](const CountsFormat& f, const char* what) {
       if (!(f.lsb > 0) || !std::isfinite(f.lsb))
@@ -283,7 +301,21 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
       }
     }
   }
-  if (increment) {
+  if (c.quantizer_step > 0) {
+    // Integrated output theta_k = theta_{k-1} + tau0 v_k, written as round(theta_k / q) q:
+    // the increment is (count_k - count_{k-1}) q = round((r_{k-1} + tau0 v_k) / q) q with
+    // r the carried residual theta - quantized theta (no growing sum, so no rounding drift).
+    const double q = c.quantizer_step;
+    double r = c.quantizer_residual;
+    const double out_scale = increment ? q : q / tau0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double d = r + tau0 * v[i];
+      const double steps = std::nearbyint(d / q);
+      r = d - steps * q;
+      v[i] = steps * out_scale;
+    }
+    c.quantizer_residual = r;
+  } else if (increment) {
     for (std::int64_t i = 0; i < n; ++i) v[i] *= tau0;
   } else if (config.kind == OutputKind::counts) {
     const double limit = std::floor(c.counts.full_scale / c.counts.lsb);
@@ -359,6 +391,13 @@ Simulator::Simulator(const SimulationConfig& config) : impl_(std::make_unique<Im
             detail::stream_key(config.seed, sensor, axis, static_cast<int>(term));
       if (c.terms.quantization) {  // e_{-1}
         detail::fill_uniform_centered(key_of(c, NoiseTerm::quantization), -1, 1, &c.e_prev);
+      }
+      c.quantizer_step = sensor == 0 ? config.gyro_quantizer_step : config.accel_quantizer_step;
+      if (c.quantizer_step > 0) {  // initial residual: uniform over one step (unknown phase)
+        detail::fill_uniform_centered(
+            detail::stream_key(config.seed, sensor, axis, kQuantizerStream), -1, 1,
+            &c.quantizer_residual);
+        c.quantizer_residual *= c.quantizer_step;
       }
       if (c.terms.gauss_markov) {  // g_{-1} from the stationary distribution
         detail::fill_normal(key_of(c, NoiseTerm::gauss_markov), -1, 1, &c.gm);

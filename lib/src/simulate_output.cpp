@@ -9,8 +9,10 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <future>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -168,6 +170,20 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
                      {"segments", positions}};
   }
   j["columns"] = columns;
+  // Units of the written values (the sidecar's parameters and theory stay SI).
+  nlohmann::json units;
+  const bool inc = c.kind == OutputKind::increment;
+  const auto unit_name = [&](const OutputUnit& u, const char* rate, const char* integrated) {
+    return c.kind == OutputKind::counts ? std::string("counts")
+           : !u.name.empty()            ? u.name
+                                        : std::string(inc ? integrated : rate);
+  };
+  if (c.gyro) units["gyro"] = unit_name(c.gyro_unit, "rad/s", "rad");
+  if (c.accel) units["accel"] = unit_name(c.accel_unit, "m/s^2", "m/s");
+  if (c.temperature_profile) units["temp"] = "K";
+  j["output_units"] = units;
+  if (c.gyro && c.gyro_quantizer_step > 0) j["gyro"]["quantizer_step"] = c.gyro_quantizer_step;
+  if (c.accel && c.accel_quantizer_step > 0) j["accel"]["quantizer_step"] = c.accel_quantizer_step;
   if (c.kind == OutputKind::counts) {
     if (c.gyro) j["gyro"]["counts"] = {{"lsb", c.gyro_counts.lsb}, {"full_scale", c.gyro_counts.full_scale}};
     if (c.accel)
@@ -207,7 +223,7 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
   std::vector<double> flicker_unit;
   if (any_flicker)
     for (std::int64_t m : ms) flicker_unit.push_back(flicker_avar_per_unit(m, sampling.flicker_taps));
-  const auto curves = [&](const ErrorModel& model, const char* prefix) {
+  const auto curves = [&](const ErrorModel& model, const char* prefix, double quantizer_step) {
     for (int axis = 0; axis < 3; ++axis) {
       const NoiseTerms& terms = model.noise[static_cast<std::size_t>(axis)];
       std::vector<double> avar;
@@ -217,13 +233,21 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
           if (term != NoiseTerm::bias_instability) total += sampled_avar(terms, term, ms[i], sampling);
         if (terms.bias_instability)
           total += *terms.bias_instability * *terms.bias_instability * flicker_unit[i];
+        if (quantizer_step > 0) {  // additive equivalent Q = step / sqrt(12): 3 Q^2 / tau^2
+          const double tau = static_cast<double>(ms[i]) * sampling.tau0_s;
+          total += quantizer_step * quantizer_step / (4 * tau * tau);
+        }
         avar.push_back(total);
       }
       theory["avar"][std::string(prefix) + "xyz"[axis]] = avar;
     }
   };
-  if (c.gyro) curves(*c.gyro, "g");
-  if (c.accel) curves(*c.accel, "a");
+  if (c.gyro) curves(*c.gyro, "g", c.gyro_quantizer_step);
+  if (c.accel) curves(*c.accel, "a", c.accel_quantizer_step);
+  if (c.gyro_quantizer_step > 0 || c.accel_quantizer_step > 0)
+    theory["quantizer"] =
+        "the real quantizer is included as its additive equivalent 3 Q^2/tau^2, Q = step/sqrt(12) "
+        "(exact when the other noise spans several steps per sample)";
   j["theory"] = theory;
   return j.dump(2) + "\n";
 }
@@ -243,7 +267,12 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
   tmp.file = std::fopen(tmp.path.c_str(), "wb");
   if (!tmp.file) throw Error("cannot create " + tmp.path.string() + ": " + std::strerror(errno));
   const int nch = simulator.channels();
-  std::vector<double> block(static_cast<std::size_t>(kRowsPerWrite * nch));
+  // Output scale per channel: SI value / unit factor (temperature stays in K).
+  std::vector<double> inverse_factor;
+  for (const auto& name : simulator.channel_names())
+    inverse_factor.push_back(name[0] == 'g'   ? 1.0 / config.gyro_unit.factor
+                             : name[0] == 'a' ? 1.0 / config.accel_unit.factor
+                                              : 1.0);
   std::string text;
   std::vector<float> floats;
   if (format == SampleFormat::csv) {
@@ -254,29 +283,46 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
   }
   static_assert(std::endian::native == std::endian::little,
                 "binary output is little-endian; add byte swapping for this platform");
-  for (;;) {
-    const std::int64_t first = simulator.position();
-    const std::int64_t rows = simulator.next(block, kRowsPerWrite);
-    if (rows == 0) break;
-    const auto values = static_cast<std::size_t>(rows * nch);
-    if (format == SampleFormat::csv) {
-      text.clear();
-      for (std::int64_t r = 0; r < rows; ++r) {
-        append_number(text, simulator.time_s(first + r));
-        for (int ch = 0; ch < nch; ++ch) {
-          text += ',';
-          append_number(text, block[static_cast<std::size_t>(r * nch + ch)]);
+  // Double buffering: the simulator fills the next block on another thread while this one
+  // formats and writes the current block (the simulator is only ever used by one thread at a
+  // time, so the samples are the same as without the pipeline).
+  std::vector<double> block(static_cast<std::size_t>(kRowsPerWrite * nch));
+  std::vector<double> next_block(block.size());
+  std::int64_t first = simulator.position();
+  std::int64_t rows = simulator.next(block, kRowsPerWrite);
+  while (rows > 0) {
+    const std::int64_t next_first = simulator.position();
+    auto pending = std::async(std::launch::async,
+                              [&] { return simulator.next(next_block, kRowsPerWrite); });
+    try {
+      const auto values = static_cast<std::size_t>(rows * nch);
+      for (std::size_t i = 0; i < values; ++i)
+        block[i] *= inverse_factor[i % static_cast<std::size_t>(nch)];
+      if (format == SampleFormat::csv) {
+        text.clear();
+        for (std::int64_t r = 0; r < rows; ++r) {
+          append_number(text, simulator.time_s(first + r));
+          for (int ch = 0; ch < nch; ++ch) {
+            text += ',';
+            append_number(text, block[static_cast<std::size_t>(r * nch + ch)]);
+          }
+          text += '\n';
         }
-        text += '\n';
+        write_all(tmp, text.data(), text.size());
+      } else if (format == SampleFormat::f64) {
+        write_all(tmp, reinterpret_cast<const char*>(block.data()), values * sizeof(double));
+      } else {
+        floats.assign(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(values));
+        write_all(tmp, reinterpret_cast<const char*>(floats.data()), values * sizeof(float));
       }
-      write_all(tmp, text.data(), text.size());
-    } else if (format == SampleFormat::f64) {
-      write_all(tmp, reinterpret_cast<const char*>(block.data()), values * sizeof(double));
-    } else {
-      floats.assign(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(values));
-      write_all(tmp, reinterpret_cast<const char*>(floats.data()), values * sizeof(float));
+      if (progress) progress(next_first, config.samples);
+    } catch (...) {
+      pending.wait();
+      throw;
     }
-    if (progress) progress(simulator.position(), config.samples);
+    rows = pending.get();
+    first = next_first;
+    std::swap(block, next_block);
   }
   if (std::fflush(tmp.file) != 0 || ::fsync(::fileno(tmp.file)) != 0)
     throw Error("cannot write " + tmp.path.string() + ": " + std::strerror(errno));

@@ -151,6 +151,13 @@ struct CountsFormat {
   double full_scale = 0;  ///< saturation [rad/s | m/s^2]
 };
 
+/// The unit values are written in (write_simulation only; the Simulator produces SI): a written
+/// value is the SI value / factor, e.g. {"deg/s", pi/180}. Empty name: SI (factor 1).
+struct OutputUnit {
+  std::string name;
+  double factor = 1;  ///< SI value of one unit [SI / unit], > 0
+};
+
 struct SimulationConfig {
   double rate_hz = 0;          ///< sample rate [Hz]
   std::int64_t samples = 0;    ///< number of samples
@@ -166,6 +173,16 @@ struct SimulationConfig {
   OutputKind kind = OutputKind::rate;
   CountsFormat gyro_counts;         ///< for kind == counts
   CountsFormat accel_counts;        ///< for kind == counts
+  /// A real quantizer (rate and increment kinds; 0 = none): the integrated output (angle
+  /// [rad] | velocity [m/s]) is rounded to multiples of this step, carrying the rounding error
+  /// from sample to sample, so each increment is an integer number of steps and each rate sample
+  /// an integer number of steps / tau0. Unlike the additive Q term this is a deterministic
+  /// function of the signal; when the other noise spans several steps per sample, it adds
+  /// 3 Q^2 / tau^2 to the AVAR with Q = step / sqrt(12) (the sidecar's theory includes it so).
+  double gyro_quantizer_step = 0;
+  double accel_quantizer_step = 0;
+  OutputUnit gyro_unit;             ///< unit of the written gyro values (see OutputUnit)
+  OutputUnit accel_unit;            ///< unit of the written accel values
   /// Longest flicker filter [taps], a power of two >= kRandomSubBlock. Memory is about
   /// 16 L bytes per flicker channel plus 32 L per thread plus 16 L; the flat band ends near
   /// flicker_band(L).m_high tau0.
@@ -220,7 +237,8 @@ enum class SampleFormat { csv, f32, f64 };
 SampleFormat parse_sample_format(std::string_view text);
 
 /// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az,temp" for the
-/// sensors and temperature present; f32/f64: little-endian rows of the channels, no time column) and its sidecar to
+/// sensors and temperature present; f32/f64: little-endian rows of the channels, no time column;
+/// values in config.gyro_unit / accel_unit, SI by default) and its sidecar to
 /// "<path>.json". Both files are written to a temporary name in their directory and renamed
 /// into place; an existing file is an Error unless `overwrite`. `progress(done, total)` is
 /// called after each block when set.
