@@ -5,6 +5,7 @@
 // run time of each method. A plain program (not Google Benchmark): it measures error and speed
 // together. Usage:
 //   bench_fit_accuracy OUT_PREFIX [SEEDS=200] [PROFILES=mems_gyro,tactical_gyro,consumer_accel]
+//                      [TAUS=octave]   (a --taus spec: octave, many:P, ...)
 // writes OUT_PREFIX.md and OUT_PREFIX.csv.
 #include <algorithm>
 #include <chrono>
@@ -20,6 +21,7 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/simulate.hpp"
+#include "sigmatau/taus.hpp"
 #include "sigmatau/units.hpp"
 
 namespace {
@@ -61,12 +63,14 @@ double truth_of(const NoiseTerms& t, NoiseTerm term) {
 
 struct Tally {
   std::vector<double> rel_error;
+  std::vector<double> signed_error;  // value / truth - 1 (-1 when left out)
   int covered = 0;
   int estimated = 0;
 };
 
 struct MethodTally {
   std::map<NoiseTerm, Tally> terms;
+  std::map<std::string, int> models;  // selected model ("N,B,K") -> runs
   int correct_model = 0;
   int runs = 0;
   double seconds = 0;
@@ -83,6 +87,9 @@ void record(MethodTally& tally, const ChannelFit& fit, const NoiseTerms& truth,
             const std::vector<NoiseTerm>& true_terms) {
   ++tally.runs;
   if (fit.model_terms == true_terms) ++tally.correct_model;
+  std::string name;
+  for (const NoiseTerm t : fit.model_terms) name += (name.empty() ? "" : ",") + std::string(term_symbol(t));
+  ++tally.models[name.empty() ? "-" : name];
   for (const NoiseTerm term : true_terms) {
     const auto& p = fit.parameter(term);
     Tally& t = tally.terms[term];
@@ -90,6 +97,7 @@ void record(MethodTally& tally, const ChannelFit& fit, const NoiseTerms& truth,
     // A true term the model left out counts as a 100% error; its report is the statement
     // "below upper_bound", i.e. the interval [0, upper_bound], which covers when x <= bound.
     t.rel_error.push_back(p.in_model ? std::abs(p.value / x - 1) : 1.0);
+    t.signed_error.push_back(p.in_model ? p.value / x - 1 : -1.0);
     if (p.in_model) {
       ++t.estimated;
       if (p.ci_low <= x && x <= p.ci_high) ++t.covered;
@@ -108,6 +116,7 @@ int main(int argc, char** argv) {
   }
   const std::string prefix = argv[1];
   const int seeds = argc > 2 ? std::stoi(argv[2]) : 200;
+  const TauSpec taus = argc > 4 ? parse_tau_spec(argv[4]) : TauSpec{};
   std::vector<std::string> wanted;
   if (argc > 3) {
     std::stringstream ss(argv[3]);
@@ -115,9 +124,11 @@ int main(int argc, char** argv) {
   }
 
   std::ostringstream md, csv;
-  md << "| profile | method | param | truth | median abs rel error | 95% CI coverage | "
-        "true model selected | fit time per channel |\n|---|---|---|---|---|---|---|---|\n";
-  csv << "profile,method,param,truth_si,runs,median_abs_rel_error,coverage,model_correct,"
+  md << "| profile | method | param | truth | median abs rel error | median rel error | "
+        "95% CI coverage | true model selected | fit time per channel |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
+  csv << "profile,method,param,truth_si,runs,median_abs_rel_error,median_rel_error,coverage,"
+         "model_correct,"
          "fit_ms_per_channel,curve_ms_per_channel,covariance_build_ms\n";
 
   for (const auto& profile : profiles()) {
@@ -150,7 +161,7 @@ int main(int argc, char** argv) {
       for (int a = 0; a < 3; ++a) {
         auto t0 = Clock::now();
         const auto series = PhaseSeries::from_rate(axes[a], 1 / profile.rate_hz);
-        const AllanCurve curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
+        const AllanCurve curve = compute_allan_curve(series, Statistic::oadev, taus, 0.683);
         auto t1 = Clock::now();
         curve_seconds += std::chrono::duration<double>(t1 - t0).count();
         const CurveSource source{1 / profile.rate_hz, series.size(), 0};
@@ -180,17 +191,19 @@ int main(int argc, char** argv) {
       for (const NoiseTerm term : true_terms) {
         const Tally& t = m->terms.at(term);
         const double med = median(t.rel_error);
+        const double bias = median(t.signed_error);
         const double cov = static_cast<double>(t.covered) / runs;
         char line[512];
-        std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.2f%% | %.1f%% | %.1f%% | %.3g ms |\n",
+        std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.2f%% | %+.2f%% | %.1f%% | %.1f%% | %.3g ms |\n",
                       profile.name.c_str(), is_joint ? "joint" : "slopes",
                       std::string(term_symbol(term)).c_str(),
                       format_noise_terms(only(truth, term), profile.sensor).c_str(), 100 * med,
+                      100 * bias,
                       100 * cov, 100.0 * m->correct_model / runs, per_fit_ms);
         md << line;
-        std::snprintf(line, sizeof line, "%s,%s,%s,%.6e,%d,%.6f,%.4f,%.4f,%.4f,%.4f,%.1f\n",
+        std::snprintf(line, sizeof line, "%s,%s,%s,%.6e,%d,%.6f,%.6f,%.4f,%.4f,%.4f,%.4f,%.1f\n",
                       profile.name.c_str(), is_joint ? "joint" : "slopes",
-                      std::string(term_symbol(term)).c_str(), truth_of(truth, term), runs, med, cov,
+                      std::string(term_symbol(term)).c_str(), truth_of(truth, term), runs, med, bias, cov,
                       static_cast<double>(m->correct_model) / runs, per_fit_ms,
                       1e3 * curve_seconds / runs, 1e3 * covariance_build_seconds);
         csv << line;
@@ -199,7 +212,11 @@ int main(int argc, char** argv) {
     md << "| " << profile.name << " | | | " << profile.description << ", " << runs
        << " channels (" << seeds << " seeds x 3 axes); OADEV curve "
        << 1e3 * curve_seconds / runs << " ms/channel; covariance basis built once in "
-       << 1e3 * covariance_build_seconds << " ms | | | | |\n";
+       << 1e3 * covariance_build_seconds << " ms; models selected (joint):";
+    for (const auto& [name, count] : joint.models) md << " " << name << " " << count;
+    md << "; (slopes):";
+    for (const auto& [name, count] : slopes.models) md << " " << name << " " << count;
+    md << " | | | | | |\n";
     std::cerr << md.str();
   }
   std::ofstream(prefix + ".md") << md.str();
