@@ -8,14 +8,11 @@
 #include "sigmatau/allan_segments.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <string>
-#include <thread>
 
+#include "parallel_items.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 
@@ -215,33 +212,13 @@ std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
     unsigned threads) {
   std::vector<std::vector<AllanCurve>> result(channels.size(),
                                               std::vector<AllanCurve>(statistics.size()));
-  const std::size_t items = channels.size() * statistics.size();
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(items, 1)));
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr first_error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    for (std::size_t i = next++; i < items; i = next++) {
-      const std::size_t c = i / statistics.size();
-      const std::size_t s = i % statistics.size();
-      try {
+  detail::for_each_item_parallel(
+      channels.size() * statistics.size(), threads, [&](std::size_t i) {
+        const std::size_t c = i / statistics.size();
+        const std::size_t s = i % statistics.size();
         result[c][s] =
             compute_segmented_allan_curve(channels[c], statistics[s], taus, confidence_level);
-      } catch (...) {
-        std::lock_guard lock(error_mutex);
-        if (!first_error) first_error = std::current_exception();
-      }
-    }
-  };
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& thread : pool) thread.join();
-  }
-  if (first_error) std::rethrow_exception(first_error);
+      });
   return result;
 }
 

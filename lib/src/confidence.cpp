@@ -33,15 +33,14 @@
 
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
+#include "noise_identification.hpp"
 
 namespace sigmatau {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Fewest points at the averaging factor for the lag-1 ACF method (Riley & Greenhall 2004 and
-/// Stable32: "at least 30 analysis points"); below it the B1 ratio is used.
-constexpr std::int64_t kMinAcfPoints = 30;
+using detail::kMinAcfPoints;
 
 /// Differencing stops once delta = r1/(1 + r1) falls below this value (Riley & Greenhall 2004:
 /// delta < 0.25 means the differenced series is stationary, alpha + 2d < 1/2 ... 1).
@@ -60,27 +59,10 @@ int lowest_alpha(Statistic statistic) { return difference_order(statistic) == 3 
 
 bool is_phase_input(const PhaseSeries& series) { return series.kind() == DataKind::phase; }
 
-/// The series at averaging factor m (see glossary `z`).
-std::vector<double> series_at(const PhaseSeries& series, std::int64_t m) {
-  const std::int64_t N = series.size();
-  std::vector<double> z;
-  if (is_phase_input(series)) {
-    z.reserve(static_cast<std::size_t>((N - 1) / m + 1));
-    for (std::int64_t k = 0; k < N; k += m) z.push_back(series.x(k));
-  } else {
-    const std::int64_t K = (N - 1) / m;
-    z.reserve(static_cast<std::size_t>(K));
-    const double inv_m = 1.0 / static_cast<double>(m);
-    for (std::int64_t k = 0; k < K; ++k) z.push_back(series.window_sum(k * m, m) * inv_m);
-  }
-  return z;
-}
-
-/// Lag-1 autocorrelation (Riley & Greenhall 2004 eq. 2); NaN for a constant series.
-double lag1_autocorrelation(const std::vector<double>& z) {
-  const std::size_t n = z.size();
+/// Lag-1 autocorrelation (Riley & Greenhall 2004 eq. 2) of z[0..n); NaN for a constant series.
+double lag1_autocorrelation(const double* z, std::size_t n) {
   long double mean = 0;
-  for (double v : z) mean += v;
+  for (std::size_t i = 0; i < n; ++i) mean += z[i];
   mean /= static_cast<long double>(n);
   long double num = 0, den = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -92,19 +74,19 @@ double lag1_autocorrelation(const std::vector<double>& z) {
   return static_cast<double>(num / den);
 }
 
-/// Lag-1 ACF method; returns false when the series is constant.
-bool identify_by_acf(std::vector<double> z, bool phase_input, int d_max, int& alpha) {
+/// Lag-1 ACF method on z[0..n), differenced in place; returns false when the series is constant.
+bool identify_by_acf(double* z, std::size_t n, bool phase_input, int d_max, int& alpha) {
   for (int d = 0;; ++d) {
-    const double r1 = lag1_autocorrelation(z);
+    const double r1 = lag1_autocorrelation(z, n);
     if (std::isnan(r1)) return false;
     const double delta = r1 / (1 + r1);
-    if (delta < kStationaryDelta || d >= d_max || z.size() < 3) {
+    if (delta < kStationaryDelta || d >= d_max || n < 3) {
       const int p = -static_cast<int>(std::lround(2 * delta)) - 2 * d;
       alpha = p + (phase_input ? 2 : 0);
       return true;
     }
-    for (std::size_t i = 0; i + 1 < z.size(); ++i) z[i] = z[i + 1] - z[i];
-    z.pop_back();
+    for (std::size_t i = 0; i + 1 < n; ++i) z[i] = z[i + 1] - z[i];
+    --n;
   }
 }
 
@@ -221,26 +203,55 @@ NoiseIdentification identify_noise(const PhaseSeries& series, Statistic statisti
   if (!(m >= 1) || m >= series.size())
     throw Error("identify_noise: averaging factor m = " + std::to_string(m) +
                 " outside 1.." + std::to_string(series.size() - 1));
+  const std::int64_t points = detail::averaged_series_points(series, m);
+  if (points >= kMinAcfPoints) {
+    std::vector<double> z(static_cast<std::size_t>(points));
+    detail::fill_averaged_series(series, m, z.data());
+    return detail::identify_noise_by_acf(z.data(), z.size(), is_phase_input(series), statistic);
+  }
   NoiseIdentification result;
+  result.method = NoiseIdentification::Method::b1_ratio;
   int alpha = kAssumedAlpha;
-  std::vector<double> z = series_at(series, m);
-  if (static_cast<std::int64_t>(z.size()) >= kMinAcfPoints) {
-    result.method = NoiseIdentification::Method::lag1_acf;
-    if (!identify_by_acf(std::move(z), is_phase_input(series), difference_order(statistic),
-                         alpha)) {
-      alpha = kAssumedAlpha;
-      result.method = NoiseIdentification::Method::assumed;
-    }
-  } else {
-    result.method = NoiseIdentification::Method::b1_ratio;
-    if (!identify_by_b1(series, statistic, m, alpha)) {
-      alpha = kAssumedAlpha;
-      result.method = NoiseIdentification::Method::assumed;
-    }
+  if (!identify_by_b1(series, statistic, m, alpha)) {
+    alpha = kAssumedAlpha;
+    result.method = NoiseIdentification::Method::assumed;
   }
   result.alpha = std::clamp(alpha, lowest_alpha(statistic), 2);
   return result;
 }
+
+namespace detail {
+
+std::int64_t averaged_series_points(const PhaseSeries& series, std::int64_t m) {
+  const std::int64_t N = series.size();
+  return is_phase_input(series) ? (N - 1) / m + 1 : (N - 1) / m;
+}
+
+void fill_averaged_series(const PhaseSeries& series, std::int64_t m, double* out) {
+  const std::int64_t N = series.size();
+  if (is_phase_input(series)) {
+    for (std::int64_t k = 0, i = 0; k < N; k += m, ++i) out[i] = series.x(k);
+  } else {
+    const std::int64_t K = (N - 1) / m;
+    const double inv_m = 1.0 / static_cast<double>(m);
+    for (std::int64_t k = 0; k < K; ++k) out[k] = series.window_sum(k * m, m) * inv_m;
+  }
+}
+
+NoiseIdentification identify_noise_by_acf(double* z, std::size_t n, bool phase_input,
+                                          Statistic statistic) {
+  NoiseIdentification result;
+  result.method = NoiseIdentification::Method::lag1_acf;
+  int alpha = kAssumedAlpha;
+  if (!identify_by_acf(z, n, phase_input, difference_order(statistic), alpha)) {
+    alpha = kAssumedAlpha;
+    result.method = NoiseIdentification::Method::assumed;
+  }
+  result.alpha = std::clamp(alpha, lowest_alpha(statistic), 2);
+  return result;
+}
+
+}  // namespace detail
 
 double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
                       std::int64_t n_phase_points) {

@@ -1,0 +1,31 @@
+#pragma once
+// Internal: the lag-1 autocorrelation noise identification of confidence.cpp on a caller's
+// buffer, so that the out-of-core path (allan_out_of_core.cpp) can hold the averaged series in
+// spilled storage and still identify exactly as the in-memory path does.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "sigmatau/confidence.hpp"
+#include "sigmatau/phase_series.hpp"
+
+namespace sigmatau::detail {
+
+/// Fewest points of the averaged series z for the lag-1 ACF method; below it confidence.cpp
+/// uses the B1 ratio (Riley & Greenhall 2004 and Stable32: "at least 30 analysis points").
+inline constexpr std::int64_t kMinAcfPoints = 30;
+
+/// Number of points of z at averaging factor m: phase decimated by m (phase input), or rate
+/// averaged over the complete non-overlapping blocks of m samples. 1 <= m < series.size().
+std::int64_t averaged_series_points(const PhaseSeries& series, std::int64_t m);
+
+/// Writes z (averaged_series_points values) to out.
+void fill_averaged_series(const PhaseSeries& series, std::int64_t m, double* out);
+
+/// The lag-1 ACF identification of z[0..n), n >= kMinAcfPoints, which it overwrites (z is
+/// differenced in place). Method lag1_acf, or assumed (alpha 0) for a constant series; alpha
+/// clamped to the range the statistic can resolve.
+NoiseIdentification identify_noise_by_acf(double* z, std::size_t n, bool phase_input,
+                                          Statistic statistic);
+
+}  // namespace sigmatau::detail
