@@ -114,6 +114,18 @@ LogOptions log_options_from(const LogArguments& args) {
   return options;
 }
 
+void note_reordering(const std::string& input, const TimingReport& timing,
+                     std::int64_t reorder_window) {
+  if (timing.reordered_samples <= 0) return;
+  std::fprintf(stderr,
+               "sigmatau: note: %s: %lld message%s arrived out of stamp order and %s put back in "
+               "order (the latest %g s late; --reorder-window %lld messages)\n",
+               input.c_str(), static_cast<long long>(timing.reordered_samples),
+               timing.reordered_samples == 1 ? "" : "s",
+               timing.reordered_samples == 1 ? "was" : "were", timing.max_reorder_s,
+               static_cast<long long>(reorder_window));
+}
+
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.kind = parse_data_kind(args.kind);
   loaded.unit = args.unit;
@@ -134,6 +146,7 @@ LoadedChannels load_channels(const LogArguments& args) {
   });
   progress.finish();
   Log& log = loaded.log;
+  note_reordering(args.input, log.timing, options.reorder_window);
   if (options.gaps == GapPolicy::fill) fill_gaps(log);
   if (log.channels.empty() || log.channels[0].empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,

@@ -51,6 +51,12 @@ LoadedChannels load_channels(const LogArguments& args);
 /// The reader options of the arguments (validated as load_channels does).
 LogOptions log_options_from(const LogArguments& args);
 
+/// ROS bags: prints a note on stderr when messages arrived out of stamp order and were sorted
+/// within the reorder window (how many, the largest lateness [s], the window [messages]).
+/// Prints nothing when there was no reordering.
+void note_reordering(const std::string& input, const TimingReport& timing,
+                     std::int64_t reorder_window);
+
 /// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded);
 

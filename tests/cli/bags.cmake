@@ -83,4 +83,70 @@ list(APPEND bag_tests cli_bags_adev_topic cli_bags_auto_topic_unindexed cli_bags
      cli_bags_bad_stamp cli_bags_time_column_refused cli_bags_binary_refused
      cli_bags_topic_on_text_refused cli_bags_negative_window cli_bags_psd cli_bags_fit
      cli_bags_analyze)
+# Corrupt bags (issue 10): exit 2 and the byte offset of the damaged record. The offsets come from
+# the writers' layouts and make_test_bags checks them (kOffset*): 49 is MCAP's first chunk (after
+# the 8-byte magic and the Header record), 4109 ROS 1's first chunk (after the 13-byte magic and
+# the 4096-byte bag header record).
+sigmatau_cli_test(NAME cli_bags_mcap_bad_crc EXIT 2
+  STDERR "bad_crc\\.mcap: chunk at byte offset 49: CRC32 of the uncompressed records is 0x[0-9a-f]+, the chunk states 0x[0-9a-f]+"
+  ARGS adev ${bag_dir}/bad_crc.mcap)
+sigmatau_cli_test(NAME cli_bags_mcap_unknown_compression EXIT 2
+  STDERR "brotli\\.mcap: chunk at byte offset 49: unknown compression \"brotli\""
+  ARGS psd ${bag_dir}/brotli.mcap)
+sigmatau_cli_test(NAME cli_bags_mcap_bad_length EXIT 2
+  STDERR "bad_length\\.mcap: corrupt record at byte offset 185875: content of 1099511627776 bytes runs past"
+  ARGS adev ${bag_dir}/bad_length.mcap)
+sigmatau_cli_test(NAME cli_bags_ros1_unknown_compression EXIT 2
+  STDERR "zz9\\.bag: chunk at byte offset 4109: unknown compression \"zz9\""
+  ARGS fit ${bag_dir}/zz9.bag)
+# wrong_type.bag is indexed: the connection record read is the index's copy, after the one chunk.
+sigmatau_cli_test(NAME cli_bags_wrong_type EXIT 2
+  STDERR "wrong_type\\.bag: connection record at byte offset 4449: topic /imu/data has type std_msgs/String, expected sensor_msgs/Imu"
+  ARGS adev ${bag_dir}/wrong_type.bag --topic /imu/data)
+sigmatau_cli_test(NAME cli_bags_wrong_type_no_topic EXIT 2
+  STDERR "wrong_type\\.bag: no sensor_msgs/Imu topic in the bag; its topics: /imu/data \\(std_msgs/String, 1 message\\)"
+  ARGS adev ${bag_dir}/wrong_type.bag)
+sigmatau_cli_test(NAME cli_bags_not_an_imu_message EXIT 2
+  STDERR "short_imu\\.mcap: record at byte offset 884: [0-9]+-byte message on /imu/data is not a sensor_msgs/Imu"
+  ARGS adev ${bag_dir}/short_imu.mcap)
+list(APPEND bag_tests cli_bags_mcap_bad_crc cli_bags_mcap_unknown_compression
+     cli_bags_mcap_bad_length cli_bags_ros1_unknown_compression cli_bags_wrong_type
+     cli_bags_wrong_type_no_topic cli_bags_not_an_imu_message)
+
+# Out-of-order stamps (shuffled.bag: message 100 four messages late, 250/251 swapped): sorted within
+# the window and reported on stderr; beyond the window refused with the message's byte offset (an
+# uncompressed bag names the record; the message stamped 100 is the 105th record of the chunk).
+sigmatau_cli_test(NAME cli_bags_reorder_sorted_and_reported EXIT 0
+  STDOUT "shuffled\\.bag: 400 samples at 200 Hz"
+  STDERR "note: .*shuffled\\.bag: 2 messages arrived out of stamp order and were put back in order \\(the latest 0\\.02 s late; --reorder-window 4 messages\\)"
+  ARGS adev ${bag_dir}/shuffled.bag --columns gx --reorder-window 4)
+sigmatau_cli_test(NAME cli_bags_reorder_beyond_window EXIT 2
+  STDERR "shuffled\\.bag: message at byte offset [0-9]+ .*on /imu/data: its header stamp is 0\\.02 s before the latest stamp seen: .*reorder window \\(3 messages\\).*--reorder-window"
+  ARGS adev ${bag_dir}/shuffled.bag --reorder-window 3)
+list(APPEND bag_tests cli_bags_reorder_sorted_and_reported cli_bags_reorder_beyond_window)
+
+# calibrate reads a bag too: a simulated 16-position log converted to a ROS 1 bag (and to CSV with
+# the same ns stamps and doubles) gives the same calibration table from either.
+set(cal_bag_dir ${bag_dir}/calibrate)
+add_test(NAME cli_bags_calibrate_simulate
+         COMMAND sigmatau_cli simulate --model "N=0.005 deg/s/sqrt(Hz)"
+                 --accel-model "N=100 ug/sqrt(Hz)" --rate 100 --sensors gyro,accel --positions 16
+                 --dwell "10 s" --latitude "45 deg" --seed 11 --gyro-scale "0.4 %,-0.6 %,0.25 %"
+                 --accel-bias "30 mg,-20 mg,25 mg" --force -o ${cal_bag_dir}/cal.csv)
+add_test(NAME cli_bags_calibrate_convert
+         COMMAND make_test_bags --from-csv ${cal_bag_dir}/cal.csv ${cal_bag_dir}/cal.bag
+                 ${cal_bag_dir}/cal_ns.csv)
+set_tests_properties(cli_bags_calibrate_simulate PROPERTIES FIXTURES_SETUP cal_bag_csv)
+set_tests_properties(cli_bags_calibrate_convert PROPERTIES FIXTURES_REQUIRED cal_bag_csv
+                     FIXTURES_SETUP cal_bag)
+add_test(NAME cli_bags_calibrate_same_as_csv
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
+                 "-DARGS_A=calibrate@@${cal_bag_dir}/cal.bag@@--latitude@@45"
+                 "-DARGS_B=calibrate@@${cal_bag_dir}/cal_ns.csv@@--time-column@@t@@--time-unit@@ns@@--latitude@@45"
+                 -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
+sigmatau_cli_test(NAME cli_bags_calibrate EXIT 0
+  STDOUT "16 static intervals.*bias x +\\+29\\.[89]"
+  ARGS calibrate ${cal_bag_dir}/cal.bag --topic /imu/data --latitude 45)
+set_tests_properties(cli_bags_calibrate_same_as_csv cli_bags_calibrate PROPERTIES
+                     FIXTURES_REQUIRED cal_bag)
 set_tests_properties(${bag_tests} PROPERTIES FIXTURES_REQUIRED cli_bags)

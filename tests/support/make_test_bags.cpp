@@ -11,15 +11,36 @@
 //   imu_lz4.mcap       lz4 chunks, CDR big endian (XCDR2), no summary (a recorder that crashed)
 //   imu.db3            rosbag2 SQLite, per-message zstd
 //   imu_folder/        a rosbag2 folder: metadata.yaml and three .db3 files
-// (the ROS 2 files with tests/support/ros2_bag_writer.hpp)
+//   shuffled.bag       400 Imu messages, uncompressed, 8 KiB chunks: message 100 arrives 4 messages
+//                      late and 250/251 swap (2 messages reordered, the worst 20 ms late)
+//   bad_crc.mcap       the Imu data in uncompressed MCAP chunks, one byte of chunk 0's data flipped
+//   brotli.mcap        an MCAP whose chunks name the compression "brotli"
+//   zz9.bag            a ROS 1 bag whose chunks name the compression "zz9"
+//   bad_length.mcap    an MCAP whose second chunk record claims a length of 2^40 bytes
+//   wrong_type.bag     /imu/data declared as std_msgs/String
+//   short_imu.mcap     unchunked Imu messages, the third one's frame_id length set to 255 (too
+//                      few bytes are left for the Imu body)
+// (the ROS 2 files with tests/support/ros2_bag_writer.hpp). The byte offsets the CLI cases expect
+// are checked here against the writers' layouts (kOffset* below), so a writer change that moves
+// them fails here rather than as a puzzling regex mismatch.
 // Data: 20000 samples at 200 Hz, white noise of 1e-3 rad/s (gyro) and 0.02 m/s^2 (accel, on
 // gravity along z), a fixed seed.
+//
+// Second use, for `calibrate` on a bag (tests/cli/bags.cmake):
+//   make_test_bags --from-csv IN.csv OUT.bag OUT_ns.csv
+// converts a text log with header t,gx,gy,gz,ax,ay,az (t in s, as `sigmatau simulate` writes it)
+// into a ROS 1 bag (lz4 chunks, /imu/data) and back into CSV with integer ns stamps relative to the
+// first and 17-digit values, so the bag and OUT_ns.csv hold the same doubles and stamps.
 // Usage: make_test_bags OUT_DIR
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -102,11 +123,168 @@ std::vector<t2::Ros2Topic> ros2_topics(const std::vector<Ros1Imu>& m, t2::CdrKin
   return {imu, tf};
 }
 
+/// Byte offsets the CLI cases name (tests/cli/bags.cmake); main() checks them against the layout.
+/// ROS 1: 13-byte magic + 4096-byte bag header record, then the first chunk.
+constexpr std::int64_t kOffsetRos1FirstChunk = 4109;
+/// MCAP: 8-byte magic + Header record (1 + 8 + 4 + 4 "ros2" + 4 + 20 "sigmatau test writer"),
+/// then the first chunk.
+constexpr std::int64_t kOffsetMcapFirstChunk = 49;
+/// bad_length.mcap: its second chunk (500 Imu messages of 360 bytes and their index records
+/// later).
+constexpr std::int64_t kOffsetMcapSecondChunk = 185875;
+/// short_imu.mcap: the third top-level message record.
+constexpr std::int64_t kOffsetShortImuMessage = 884;
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+void patch(const fs::path& path, std::int64_t at, const std::string& bytes) {
+  std::string b = read_file(path);
+  if (at < 0 || static_cast<std::size_t>(at) + bytes.size() > b.size()) {
+    throw std::runtime_error("patch outside " + path.string());
+  }
+  b.replace(static_cast<std::size_t>(at), bytes.size(), bytes);
+  write_bytes(path, b);
+}
+
+void expect_offset(const char* what, std::int64_t got, std::int64_t expected) {
+  if (got != expected) {
+    throw std::runtime_error(std::string(what) + " at byte offset " + std::to_string(got) +
+                             ", but tests/cli/bags.cmake expects " + std::to_string(expected));
+  }
+}
+
+/// The corrupt and reordered bags of the CLI cases (see the file comment).
+void write_bad_bags(const fs::path& dir, const std::vector<Ros1Imu>& m) {
+  {  // shuffled.bag: message 100 four messages late, 250 and 251 swapped.
+    std::vector<Ros1Imu> arrival(m.begin(), m.begin() + 400);
+    const Ros1Imu late = arrival[100];
+    arrival.erase(arrival.begin() + 100);
+    arrival.insert(arrival.begin() + 104, late);
+    std::swap(arrival[250], arrival[251]);
+    Ros1BagWriter::Options o;
+    o.chunk_bytes = 8 * 1024;
+    Ros1BagWriter w((dir / "shuffled.bag").string(), o);
+    const auto imu = w.add_connection("/imu/data", "sensor_msgs/Imu");
+    for (const Ros1Imu& x : arrival) w.write_imu(imu, x);
+    w.finish();
+  }
+  const auto topics = ros2_topics(std::vector<Ros1Imu>(m.begin(), m.begin() + 2000),
+                                  t2::CdrKind::xcdr1_le);
+  {  // bad_crc.mcap: a byte inside a message of chunk 0 (after the chunk's 9-byte record head,
+     // 32 bytes of fixed fields with an empty compression name and the 8-byte records length).
+    t2::McapOptions o;
+    o.chunk_messages = 500;
+    const auto layout = t2::write_mcap(dir / "bad_crc.mcap", topics, o);
+    expect_offset("bad_crc.mcap chunk 0", layout.chunk_offsets.at(0), kOffsetMcapFirstChunk);
+    patch(dir / "bad_crc.mcap", layout.chunk_offsets[0] + 9 + 32 + 8 + 300, "\x5a");
+  }
+  {
+    t2::McapOptions o;
+    o.chunk_messages = 500;
+    o.compression = "brotli";  // the writer stores such chunks uncompressed under that name
+    const auto layout = t2::write_mcap(dir / "brotli.mcap", topics, o);
+    expect_offset("brotli.mcap chunk 0", layout.chunk_offsets.at(0), kOffsetMcapFirstChunk);
+  }
+  {  // bad_length.mcap: chunk 1's record length (after its opcode byte) set to 2^40.
+    t2::McapOptions o;
+    o.chunk_messages = 500;
+    const auto layout = t2::write_mcap(dir / "bad_length.mcap", topics, o);
+    std::string len(8, '\0');
+    const std::uint64_t huge = std::uint64_t{1} << 40;
+    for (int i = 0; i < 8; ++i) len[i] = static_cast<char>((huge >> (8 * i)) & 0xff);
+    expect_offset("bad_length.mcap chunk 1", layout.chunk_offsets.at(1), kOffsetMcapSecondChunk);
+    patch(dir / "bad_length.mcap", layout.chunk_offsets[1] + 1, len);
+  }
+  {
+    Ros1BagWriter::Options o;
+    o.compression_name = "zz9";
+    Ros1BagWriter w((dir / "zz9.bag").string(), o);
+    const auto imu = w.add_connection("/imu/data", "sensor_msgs/Imu");
+    for (std::size_t i = 0; i < 50; ++i) w.write_imu(imu, m[i]);
+    w.finish();
+    expect_offset("zz9.bag chunk 0", w.chunk_positions().at(0), kOffsetRos1FirstChunk);
+  }
+  {
+    Ros1BagWriter w((dir / "wrong_type.bag").string(), {});
+    const auto s = w.add_connection("/imu/data", "std_msgs/String");
+    w.write_message(s, m[0].receive_ns, std::string("\x05\0\0\0hello", 9));
+    w.finish();
+  }
+  {  // short_imu.mcap: unchunked; in the third message record (9-byte head, 22 bytes of channel
+     // id, sequence and times, 4-byte CDR encapsulation, 8-byte stamp) the frame_id length.
+    t2::Ros2Topic imu = topics[0];
+    imu.values.resize(5);
+    t2::McapOptions o;
+    o.chunked = false;
+    const auto layout = t2::write_mcap(dir / "short_imu.mcap", {imu}, o);
+    expect_offset("short_imu.mcap message 2", layout.message_offsets.at(2), kOffsetShortImuMessage);
+    patch(dir / "short_imu.mcap", layout.message_offsets[2] + 9 + 22 + 4 + 8,
+          std::string("\xff\x00\x00\x00", 4));
+  }
+}
+
+/// make_test_bags --from-csv IN.csv OUT.bag OUT_ns.csv (see the file comment).
+void convert_csv(const fs::path& in_path, const fs::path& bag_path, const fs::path& csv_path) {
+  std::ifstream in(in_path);
+  if (!in) throw std::runtime_error("cannot read " + in_path.string());
+  std::string line;
+  if (!std::getline(in, line) || line != "t,gx,gy,gz,ax,ay,az") {
+    throw std::runtime_error(in_path.string() + ": expected the header t,gx,gy,gz,ax,ay,az");
+  }
+  std::vector<Ros1Imu> m;
+  for (std::size_t row = 2; std::getline(in, line); ++row) {
+    if (line.empty()) continue;
+    const char* p = line.c_str();
+    double v[7];
+    for (int k = 0; k < 7; ++k) {
+      char* end = nullptr;
+      v[k] = std::strtod(p, &end);
+      if (end == p || (k < 6 && *end != ',') || (k == 6 && *end != '\0')) {
+        throw std::runtime_error(in_path.string() + ":" + std::to_string(row) + ": bad row");
+      }
+      p = end + 1;
+    }
+    Ros1Imu x;
+    x.header_ns = kStartNs + std::llround(v[0] * 1e9);
+    x.receive_ns = x.header_ns + 400000;
+    for (int k = 0; k < 3; ++k) {
+      x.gyro[k] = v[1 + k];
+      x.accel[k] = v[4 + k];
+    }
+    m.push_back(x);
+  }
+  if (m.empty()) throw std::runtime_error(in_path.string() + ": no rows");
+  write_ros1(bag_path.string(), m, Ros1BagWriter::Compression::lz4, true);
+  write_csv(csv_path.string(), m);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 5 && std::string(argv[1]) == "--from-csv") {
+    try {
+      convert_csv(argv[2], argv[3], argv[4]);
+    } catch (const std::exception& e) {
+      std::cerr << "make_test_bags: " << e.what() << "\n";
+      return 1;
+    }
+    return 0;
+  }
   if (argc != 2) {
-    std::cerr << "usage: make_test_bags OUT_DIR\n";
+    std::cerr << "usage: make_test_bags OUT_DIR | make_test_bags --from-csv IN.csv OUT.bag "
+                 "OUT_ns.csv\n";
     return 2;
   }
   try {
@@ -147,6 +325,7 @@ int main(int argc, char** argv) {
     fs::remove_all(dir / "imu_folder");
     t2::write_rosbag2_folder(dir / "imu_folder", "sqlite3", ros2_topics(m, t2::CdrKind::xcdr1_le),
                              3);
+    write_bad_bags(dir, m);
   } catch (const std::exception& e) {
     std::cerr << "make_test_bags: " << e.what() << "\n";
     return 1;
