@@ -1,4 +1,6 @@
 // `sigmatau simulate`: a synthetic IMU log from a noise model, with its exact truth in a sidecar.
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -39,7 +41,91 @@ struct SimulateArguments {
   std::string temperature;
   std::string gyro_scale, accel_scale, gyro_misalignment, accel_misalignment;
   std::string gyro_temp_coef, accel_temp_coef;
+  std::string out_unit;
+  std::string gyro_quantizer, accel_quantizer;
+  std::string truth_file, truth_unit;
 };
+
+/// Trims spaces at both ends.
+std::string trim(std::string s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.erase(s.begin());
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.pop_back();
+  return s;
+}
+
+/// A model option: "N=..., B=..." for all three axes, or per axis "x: N=...; y: N=...; z: ..."
+/// where a label is any of x, y, z or a group such as "xy"; an axis no label names has no noise.
+std::array<NoiseTerms, 3> axis_models(const std::string& text, Sensor sensor,
+                                      const std::string& option) {
+  std::vector<std::string> parts;
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t end = std::min(text.find(';', start), text.size());
+    parts.push_back(trim(text.substr(start, end - start)));
+    start = end + 1;
+  }
+  // The label of a part: the text before ':' when it is made of x, y, z only.
+  const auto label_of = [](const std::string& part) -> std::string {
+    const auto colon = part.find(':');
+    if (colon == std::string::npos) return {};
+    const std::string label = trim(part.substr(0, colon));
+    if (label.empty() || label.find_first_not_of("xyz") != std::string::npos) return {};
+    return label;
+  };
+  if (parts.size() == 1 && label_of(parts[0]).empty()) {
+    const NoiseTerms t = parse_noise_terms(parts[0], sensor);
+    return {t, t, t};
+  }
+  std::array<NoiseTerms, 3> axes;
+  std::array<bool, 3> seen{};
+  for (const auto& part : parts) {
+    const std::string label = label_of(part);
+    if (label.empty())
+      throw Error(option + " '" + text + "': per-axis models are \"x: TERMS; y: TERMS; z: TERMS\" "
+                  "(labels x, y, z or groups such as xy); '" + part + "' has no axis label");
+    const NoiseTerms t = parse_noise_terms(trim(part.substr(part.find(':') + 1)), sensor);
+    for (char axis : label) {
+      const auto i = static_cast<std::size_t>(axis - 'x');
+      if (seen[i])
+        throw Error(option + " '" + text + "': axis " + std::string(1, axis) + " is given twice");
+      seen[i] = true;
+      axes[i] = t;
+    }
+  }
+  return axes;
+}
+
+/// The sensor (0 gyro, 1 accel) whose output a unit of dimension `d` measures for `kind`, or -1.
+int sensor_of_unit(const Dimension& d, OutputKind kind) {
+  const bool inc = kind == OutputKind::increment;
+  if (d == (inc ? dim::angle : dim::angular_rate)) return 0;
+  if (d == (inc ? dim::velocity : dim::acceleration)) return 1;
+  return -1;
+}
+
+/// "--out-unit deg/h, mg": each unit goes to the sensor its dimension belongs to (for the
+/// output kind); a unit that fits no simulated sensor, or two units for one sensor, is an Error.
+void apply_out_units(SimulationConfig& c, const std::string& text) {
+  if (text.empty()) return;
+  if (c.kind == OutputKind::counts)
+    throw Error("--out-unit does not apply to --kind counts (values are integer counts; the LSB "
+                "is --gyro-lsb / --accel-lsb)");
+  const bool inc = c.kind == OutputKind::increment;
+  std::array<bool, 2> seen{};
+  for (const auto& item : split_list(text, "--out-unit")) {
+    const Unit u = parse_unit(item);
+    const int sensor = sensor_of_unit(u.dimension, c.kind);
+    const bool present = sensor == 0 ? c.gyro.has_value() : sensor == 1 && c.accel.has_value();
+    if (!present)
+      throw Error("--out-unit '" + item + "' (" + to_string(u.dimension) + ") fits no simulated " +
+                  "sensor of kind " + std::string(to_string(c.kind)) + ": expected " +
+                  (inc ? "an angle (gyro, e.g. deg) or a velocity (accel, e.g. m/s)"
+                       : "an angular rate (gyro, e.g. deg/s) or an acceleration (accel, e.g. mg)"));
+    if (seen[static_cast<std::size_t>(sensor)])
+      throw Error("--out-unit '" + text + "': two units for the " + (sensor == 0 ? "gyro" : "accel"));
+    seen[static_cast<std::size_t>(sensor)] = true;
+    (sensor == 0 ? c.gyro_unit : c.accel_unit) = OutputUnit{item, u.factor};
+  }
+}
 
 /// "v1, v2, ..." of `count` ratios (%, ppm or plain numbers).
 std::vector<double> ratios(const std::string& text, std::size_t count, const std::string& option) {
@@ -160,10 +246,7 @@ void run_simulate(const SimulateArguments& a) {
     if (s == "gyro") {
       ErrorModel m;
       m.noise = sheet_noise(Sensor::gyro);
-      if (!a.gyro_model.empty()) {
-        const NoiseTerms t = parse_noise_terms(a.gyro_model, Sensor::gyro);
-        m.noise = {t, t, t};
-      }
+      if (!a.gyro_model.empty()) m.noise = axis_models(a.gyro_model, Sensor::gyro, "--model");
       if (!a.gyro_bias.empty()) m.bias = triple(a.gyro_bias, dim::angular_rate, "--gyro-bias");
       apply_error_model(m, a.gyro_scale, a.gyro_misalignment, a.gyro_temp_coef, dim::angular_rate,
                         "gyro");
@@ -171,10 +254,8 @@ void run_simulate(const SimulateArguments& a) {
     } else if (s == "accel") {
       ErrorModel m;
       m.noise = sheet_noise(Sensor::accel);
-      if (!a.accel_model.empty()) {
-        const NoiseTerms t = parse_noise_terms(a.accel_model, Sensor::accel);
-        m.noise = {t, t, t};
-      }
+      if (!a.accel_model.empty())
+        m.noise = axis_models(a.accel_model, Sensor::accel, "--accel-model");
       if (!a.accel_bias.empty()) m.bias = triple(a.accel_bias, dim::acceleration, "--accel-bias");
       apply_error_model(m, a.accel_scale, a.accel_misalignment, a.accel_temp_coef,
                         dim::acceleration, "accel");
@@ -199,6 +280,35 @@ void run_simulate(const SimulateArguments& a) {
     if (c.accel)
       c.accel_counts = counts(a.accel_lsb, a.accel_full_scale, dim::acceleration, "accel");
   }
+  apply_out_units(c, a.out_unit);
+  if (!a.gyro_quantizer.empty()) {
+    if (!c.gyro) throw Error("--gyro-quantizer is given but --sensors has no gyro");
+    c.gyro_quantizer_step = parse_quantity_as(a.gyro_quantizer, dim::angle, "--gyro-quantizer");
+  }
+  if (!a.accel_quantizer.empty()) {
+    if (!c.accel) throw Error("--accel-quantizer is given but --sensors has no accel");
+    c.accel_quantizer_step =
+        parse_quantity_as(a.accel_quantizer, dim::velocity, "--accel-quantizer");
+  }
+  if (!a.truth_file.empty()) {
+    if (c.schedule) throw Error("give either --truth or --positions, not both");
+    // --truth-unit "deg/s, g": each unit to the sensor of its dimension (rate units).
+    double gyro_factor = 1, accel_factor = 1;
+    if (!a.truth_unit.empty())
+      for (const auto& item : split_list(a.truth_unit, "--truth-unit")) {
+        const Unit u = parse_unit(item);
+        const int sensor = sensor_of_unit(u.dimension, OutputKind::rate);
+        if (sensor < 0)
+          throw Error("--truth-unit '" + item + "' (" + to_string(u.dimension) +
+                      "): expected an angular rate (gx..gz, e.g. deg/s) or an acceleration "
+                      "(ax..az, e.g. g)");
+        (sensor == 0 ? gyro_factor : accel_factor) = u.factor;
+      }
+    c.truth_series = std::make_shared<const TruthSeries>(read_truth_csv(
+        a.truth_file, c.gyro.has_value(), c.accel.has_value(), gyro_factor, accel_factor));
+  } else if (!a.truth_unit.empty()) {
+    throw Error("--truth-unit is given without --truth");
+  }
   const SampleFormat format = parse_sample_format(a.format);
   const bool tty = stderr_is_tty();
   write_simulation(c, a.output, format, a.force, [tty](std::int64_t done, std::int64_t total) {
@@ -217,16 +327,19 @@ void add_simulate_command(CLI::App& app) {
       "simulate", "Synthetic IMU log from a noise model, with its exact truth and theoretical "
                   "AVAR in FILE.json");
   command->add_option("--model", args->gyro_model,
-                      "gyro noise per axis, e.g. \"N=0.15 deg/sqrt(h), B=3 deg/h, "
+                      "gyro noise, the same on every axis, e.g. \"N=0.15 deg/sqrt(h), B=3 deg/h, "
                       "K=0.02 deg/h/sqrt(h)\" (keys Q N B K R, GM=<sigma> @ <tau>, "
-                      "SIN=<amplitude> @ <frequency>)");
+                      "SIN=<amplitude> @ <frequency>), or per axis \"xy: N=0.15 deg/sqrt(h); "
+                      "z: N=0.2 deg/sqrt(h), B=5 deg/h\" (labels x, y, z or groups; an axis not "
+                      "named has no noise)");
   command->add_option("--spec", args->spec,
                       "simulate the noise terms of a data sheet (file or name in specs/)");
   command->add_option("--density-convention", args->convention,
                       "how --spec's noise density is read: two-sided (N = ND) or one-sided")
       ->capture_default_str();
   command->add_option("--accel-model", args->accel_model,
-                      "accelerometer noise per axis, e.g. \"N=60 ug/sqrt(Hz), B=0.05 mg\"");
+                      "accelerometer noise, e.g. \"N=60 ug/sqrt(Hz), B=0.05 mg\" (per axis as "
+                      "--model: \"x: ...; y: ...; z: ...\")");
   command->add_option("--rate", args->rate_hz, "sample rate [Hz]")->required();
   command->add_option("--duration", args->duration,
                       "log length, e.g. 2h, \"600 s\" (number: s); default with --positions: the "
@@ -250,6 +363,22 @@ void add_simulate_command(CLI::App& app) {
                       "gyro bias temperature coefficients x,y,z, e.g. \"0.01 deg/s/K\"");
   command->add_option("--accel-temp-coef", args->accel_temp_coef,
                       "accelerometer bias temperature coefficients x,y,z, e.g. \"0.2 mg/K\"");
+  command->add_option("--out-unit", args->out_unit,
+                      "units of the written values, one per sensor, told apart by dimension, e.g. "
+                      "\"deg/h\" or \"deg/s, mg\" (increments: \"deg, mm/s\"); default SI (rad/s, "
+                      "m/s^2; rad, m/s); not with --kind counts");
+  command->add_option("--gyro-quantizer", args->gyro_quantizer,
+                      "a real quantizer: the integrated gyro output (angle) is rounded to "
+                      "multiples of this step, the residual carried, e.g. \"0.0001 deg\"");
+  command->add_option("--accel-quantizer", args->accel_quantizer,
+                      "a real quantizer of the integrated accel output (velocity), e.g. "
+                      "\"0.1 mm/s\"");
+  command->add_option("--truth", args->truth_file,
+                      "true signal from a CSV with columns t [s] and gx,gy,gz and/or ax,ay,az "
+                      "(those of --sensors), linear between rows, held outside; replaces the "
+                      "static pose; the error model and noise are applied to it");
+  command->add_option("--truth-unit", args->truth_unit,
+                      "units of --truth's columns, e.g. \"deg/s, g\" (default rad/s, m/s^2)");
   command->add_option("--seed", args->seed, "random seed")->capture_default_str();
   command->add_option("--sensors", args->sensors, "gyro, accel or gyro,accel")
       ->capture_default_str();

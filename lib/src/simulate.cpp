@@ -15,6 +15,7 @@
 #include "simulate_flicker.hpp"
 #include "simulate_random.hpp"
 #include "simulate_schedule.hpp"
+#include "simulate_truth.hpp"
 
 namespace sigmatau {
 namespace {
@@ -115,6 +116,17 @@ void validate(const SimulationConfig& c) {
   if (!(c.temperature_k > 0) || !std::isfinite(c.temperature_k))
     throw Error("simulation: temperature must be > 0 K");
   if (c.schedule) (void)detail::ScheduleTruth(*c.schedule);  // validates
+  if (c.truth_series) {
+    if (c.schedule)
+      throw Error("simulation: a truth series and a multi-position schedule both give the truth; "
+                  "use one of them");
+    validate(*c.truth_series);
+    if (c.gyro && c.truth_series->angular_rate.empty())
+      throw Error("simulation: the truth series has no angular rate (gx, gy, gz) for the gyro");
+    if (c.accel && c.truth_series->specific_force.empty())
+      throw Error("simulation: the truth series has no specific force (ax, ay, az) for the "
+                  "accelerometer");
+  }
   if (c.temperature_profile) {
     const auto& p = c.temperature_profile->points;
     if (p.empty()) throw Error("simulation: the temperature profile has no points");
@@ -183,6 +195,7 @@ struct Simulator::Impl {
   std::int64_t chunk_rows = 0;   // rows in the current chunk (0 before the first)
   // Time-varying truth (schedule) and temperature (profile), per row of the current chunk.
   std::optional<detail::ScheduleTruth> schedule;
+  std::optional<detail::TruthCursor> truth_cursor;  // user truth series
   bool dynamic = false;
   std::vector<Eigen::Vector3d> gyro_truth, accel_truth;
   std::vector<double> temperature;
@@ -310,7 +323,7 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
     const double out_scale = increment ? q : q / tau0;
     for (std::int64_t i = 0; i < n; ++i) {
       const double d = r + tau0 * v[i];
-      const double steps = std::nearbyint(d / q);
+      const double steps = std::nearbyint(d / q) + 0.0;  // + 0.0: no "-0" in the output
       r = d - steps * q;
       v[i] = steps * out_scale;
     }
@@ -320,7 +333,7 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
   } else if (config.kind == OutputKind::counts) {
     const double limit = std::floor(c.counts.full_scale / c.counts.lsb);
     for (std::int64_t i = 0; i < n; ++i)
-      v[i] = std::clamp(std::nearbyint(v[i] / c.counts.lsb), -limit, limit);
+      v[i] = std::clamp(std::nearbyint(v[i] / c.counts.lsb), -limit, limit) + 0.0;
   }
 }
 
@@ -335,6 +348,7 @@ void Simulator::Impl::fill_truth() {
     const double t = static_cast<double>(chunk_start + static_cast<std::int64_t>(i)) * tau0;
     Truth x = config.truth;
     if (schedule) x = increment ? schedule->mean(t, t + tau0) : schedule->at(t);
+    if (truth_cursor) x = increment ? truth_cursor->mean(t, t + tau0) : truth_cursor->at(t);
     gyro_truth[i] = x.angular_rate;
     accel_truth[i] = x.specific_force;
     temperature[i] = !config.temperature_profile ? config.temperature_k
@@ -410,7 +424,9 @@ Simulator::Simulator(const SimulationConfig& config) : impl_(std::make_unique<Im
   if (config.gyro) add(*config.gyro, config.truth.angular_rate, 0, config.gyro_counts);
   if (config.accel) add(*config.accel, config.truth.specific_force, 1, config.accel_counts);
   if (config.schedule) s.schedule.emplace(*config.schedule);
-  s.dynamic = config.schedule.has_value() || config.temperature_profile.has_value();
+  if (s.config.truth_series) s.truth_cursor.emplace(*s.config.truth_series);
+  s.dynamic = config.schedule.has_value() || config.temperature_profile.has_value() ||
+              config.truth_series != nullptr;
   if (config.temperature_profile) {
     Channel c;
     c.sensor = 2;

@@ -169,6 +169,23 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
                      {"duration_s", schedule_duration_s(*c.schedule)},
                      {"segments", positions}};
   }
+  if (c.truth_series) {
+    // The series itself is the truth (the "truth" and "expected_mean" above are for the static
+    // pose and do not apply): where it came from, its span and how it is evaluated.
+    const TruthSeries& x = *c.truth_series;
+    j["truth_series"] = {{"source", x.source},
+                         {"rows", x.t_s.size()},
+                         {"t_first_s", x.t_s.front()},
+                         {"t_last_s", x.t_s.back()},
+                         {"units", {{"angular_rate", "rad/s"}, {"specific_force", "m/s^2"}}},
+                         {"interpolation", "linear in time, held constant outside; increment "
+                                           "output integrates it exactly"}};
+    for (const char* sensor : {"gyro", "accel"})
+      if (j.contains(sensor)) {
+        j[sensor].erase("truth");
+        j[sensor].erase("expected_mean");
+      }
+  }
   j["columns"] = columns;
   // Units of the written values (the sidecar's parameters and theory stay SI).
   nlohmann::json units;

@@ -139,6 +139,33 @@ double temperature_at(const TemperatureProfile& profile, double t_s);
 /// value at t0).
 double mean_temperature(const TemperatureProfile& profile, double t0_s, double t1_s);
 
+/// A user-given true signal in the sensor frame: rows at strictly increasing times, linear in
+/// time between rows and held constant before the first and after the last row. Either vector
+/// may be empty when that sensor is not simulated; otherwise each has one entry per time.
+struct TruthSeries {
+  std::vector<double> t_s;                      ///< strictly increasing, finite [s]
+  std::vector<Eigen::Vector3d> angular_rate;    ///< [rad/s] (empty: no gyro truth)
+  std::vector<Eigen::Vector3d> specific_force;  ///< [m/s^2] (empty: no accel truth)
+  std::string source;                           ///< where it came from (for the sidecar)
+};
+
+/// Checks a series (sizes, strictly increasing finite times, finite values); throws Error naming
+/// the first bad row (1-based).
+void validate(const TruthSeries& series);
+/// The series at t [s] (linear interpolation, constant outside); an empty vector gives zeros.
+Truth truth_at(const TruthSeries& series, double t_s);
+/// The mean of the series over [t0, t1] [s] (exact for the piecewise-linear signal; t0 == t1:
+/// truth_at(t0)).
+Truth truth_mean(const TruthSeries& series, double t0_s, double t1_s);
+
+/// Reads a truth CSV (or any text log LogReader reads): time column "t" [s] and the columns
+/// gx, gy, gz (when `gyro`) and ax, ay, az (when `accel`), each multiplied by its factor to SI
+/// (rad/s | m/s^2 per unit of the file; 1 for SI). Throws ParseError / Error naming the file,
+/// the line and the problem (missing column, non-numeric or non-finite value, time not
+/// increasing).
+TruthSeries read_truth_csv(const std::filesystem::path& path, bool gyro, bool accel,
+                           double gyro_factor = 1, double accel_factor = 1);
+
 enum class OutputKind { rate, increment, counts };
 /// "rate" | "increment" | "counts"; throws Error otherwise.
 OutputKind parse_output_kind(std::string_view text);
@@ -167,6 +194,9 @@ struct SimulationConfig {
   Truth truth;                      ///< true signals (e.g. static_truth(pose))
   /// Multi-position schedule; when present it gives the truth (and `truth` is ignored).
   std::optional<Schedule> schedule;
+  /// A user-given true signal (e.g. read_truth_csv); when present it gives the truth (and
+  /// `truth` is ignored). Shared, not copied, by the Simulator. Not together with `schedule`.
+  std::shared_ptr<const TruthSeries> truth_series;
   double temperature_k = 298.15;    ///< constant sensor temperature [K]
   /// Temperature profile; when present it replaces temperature_k and adds the "temp" channel.
   std::optional<TemperatureProfile> temperature_profile;

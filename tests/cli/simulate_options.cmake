@@ -1,0 +1,194 @@
+# `sigmatau simulate` options of issue 4: --out-unit (values read back with `adev --unit` give the
+# same table as the SI log), the real quantizer, per-axis models, a user truth CSV (--truth).
+set(SIMO_DIR ${CMAKE_CURRENT_BINARY_DIR}/simulate_options)
+file(MAKE_DIRECTORY ${SIMO_DIR})
+
+# A checker for files the simulator wrote (cmake -P):
+#   FILE, LINES = "N=REGEX@@N=REGEX..." : line N (1-based) of FILE matches REGEX;
+#   JSON = "a/b/0/c=REGEX@@..."        : that member of the JSON FILE matches REGEX;
+#   COLUMN = i, ALL = REGEX             : field i (0-based) of every line after the header matches.
+file(WRITE ${SIMO_DIR}/check_simulated.cmake [=[
+file(STRINGS "${FILE}" lines)
+set(failed FALSE)
+if(LINES)
+  string(REPLACE "@@" ";" items "${LINES}")
+  foreach(item IN LISTS items)
+    string(FIND "${item}" "=" eq)
+    string(SUBSTRING "${item}" 0 ${eq} n)
+    math(EXPR start "${eq} + 1")
+    string(SUBSTRING "${item}" ${start} -1 re)
+    math(EXPR index "${n} - 1")
+    list(GET lines ${index} line)
+    if(NOT line MATCHES "${re}")
+      message(SEND_ERROR "${FILE}:${n}: '${line}' does not match '${re}'")
+      set(failed TRUE)
+    endif()
+  endforeach()
+endif()
+if(JSON)
+  file(READ "${FILE}" text)
+  string(REPLACE "@@" ";" items "${JSON}")
+  foreach(item IN LISTS items)
+    string(FIND "${item}" "=" eq)
+    string(SUBSTRING "${item}" 0 ${eq} path)
+    math(EXPR start "${eq} + 1")
+    string(SUBSTRING "${item}" ${start} -1 re)
+    string(REPLACE "/" ";" keys "${path}")
+    string(JSON value ERROR_VARIABLE err GET "${text}" ${keys})
+    if(err OR NOT value MATCHES "${re}")
+      message(SEND_ERROR "${FILE}: ${path} = '${value}' does not match '${re}' ${err}")
+      set(failed TRUE)
+    endif()
+  endforeach()
+endif()
+if(DEFINED COLUMN)
+  list(LENGTH lines count)
+  math(EXPR last "${count} - 1")
+  foreach(i RANGE 1 ${last})
+    list(GET lines ${i} line)
+    string(REPLACE "," ";" fields "${line}")
+    list(GET fields ${COLUMN} value)
+    if(NOT value MATCHES "${ALL}")
+      message(SEND_ERROR "${FILE}:${i}: field ${COLUMN} '${value}' does not match '${ALL}'")
+      set(failed TRUE)
+      break()
+    endif()
+  endforeach()
+endif()
+if(failed)
+  message(FATAL_ERROR "check failed")
+endif()
+]=])
+function(simo_check name depends)
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${ARGN} -P ${SIMO_DIR}/check_simulated.cmake)
+  set_tests_properties(${name} PROPERTIES DEPENDS ${depends})
+endfunction()
+
+# --- --out-unit: the same seed in SI and in deg/h, mg; `adev --unit` reads both back to the same
+# table (the written value is SI / factor, read back as value x factor: 1 ulp, far below the
+# table's 7 digits).
+set(simo_model --model "N=0.15 deg/sqrt(h), B=3 deg/h" --accel-model "N=60 ug/sqrt(Hz), B=0.05 mg"
+    --sensors gyro,accel --rate 100 --duration 2min --seed 21 --force)
+sigmatau_cli_test(NAME cli_simulate_out_unit_si EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate ${simo_model} -o si.csv)
+sigmatau_cli_test(NAME cli_simulate_out_unit EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate ${simo_model} --out-unit "deg/h, mg" -o units.csv)
+simo_check(cli_simulate_out_unit_sidecar "cli_simulate_out_unit"
+  -DFILE=${SIMO_DIR}/units.csv.json "-DJSON=output_units/gyro=^deg/h$@@output_units/accel=^mg$")
+foreach(sensor gyro accel)
+  if(sensor STREQUAL gyro)
+    set(cols gx,gy,gz)
+    set(si rad/s)
+    set(written deg/h)
+  else()
+    set(cols ax,ay,az)
+    set(si m/s^2)
+    set(written mg)
+  endif()
+  add_test(NAME cli_simulate_out_unit_reads_back_${sensor}
+           COMMAND ${CMAKE_COMMAND} -DCMD=$<TARGET_FILE:sigmatau_cli>
+                   "-DARGS_A=adev@@si.csv@@--time-column@@t@@--columns@@${cols}@@--unit@@${si}@@--out-unit@@${written}@@--format@@csv"
+                   "-DARGS_B=adev@@units.csv@@--time-column@@t@@--columns@@${cols}@@--unit@@${written}@@--out-unit@@${written}@@--format@@csv"
+                   -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake
+           WORKING_DIRECTORY ${SIMO_DIR})
+  set_tests_properties(cli_simulate_out_unit_reads_back_${sensor} PROPERTIES
+                       DEPENDS "cli_simulate_out_unit_si;cli_simulate_out_unit")
+endforeach()
+# Increments in deg and mm/s read back with adev --kind increment.
+set(simo_inc --model "N=0.15 deg/sqrt(h)" --accel-model "N=60 ug/sqrt(Hz)" --sensors gyro,accel
+    --kind increment --rate 100 --duration 1min --seed 22 --force)
+sigmatau_cli_test(NAME cli_simulate_out_unit_inc_si EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "kind increment" ARGS simulate ${simo_inc} -o inc_si.csv)
+sigmatau_cli_test(NAME cli_simulate_out_unit_inc EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "kind increment" ARGS simulate ${simo_inc} --out-unit "mm/s, deg" -o inc_units.csv)
+add_test(NAME cli_simulate_out_unit_inc_reads_back
+         COMMAND ${CMAKE_COMMAND} -DCMD=$<TARGET_FILE:sigmatau_cli>
+                 "-DARGS_A=adev@@inc_si.csv@@--time-column@@t@@--kind@@increment@@--unit@@rad@@--columns@@gx@@--out-unit@@deg/s@@--format@@csv"
+                 "-DARGS_B=adev@@inc_units.csv@@--time-column@@t@@--kind@@increment@@--unit@@deg@@--columns@@gx@@--out-unit@@deg/s@@--format@@csv"
+                 -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake
+         WORKING_DIRECTORY ${SIMO_DIR})
+set_tests_properties(cli_simulate_out_unit_inc_reads_back PROPERTIES
+                     DEPENDS "cli_simulate_out_unit_inc_si;cli_simulate_out_unit_inc")
+sigmatau_cli_test(NAME cli_simulate_out_unit_wrong_kind EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "fits no simulated sensor of kind increment"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --kind increment --out-unit deg/s --rate 100
+       --duration 1 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_out_unit_counts EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "does not apply to --kind counts"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --kind counts --gyro-lsb "0.01 deg/s"
+       --gyro-full-scale "250 deg/s" --out-unit deg/s --rate 100 --duration 1 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_out_unit_twice EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "two units for the gyro"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --out-unit "deg/s, deg/h" --rate 100 --duration 1
+       -o bad.csv)
+
+# --- the real quantizer: increments of 0.001 deg written in deg are whole thousandths (up to the
+# rounding of deg -> rad -> deg: a run of 0s or 9s after the third decimal).
+sigmatau_cli_test(NAME cli_simulate_quantizer EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate --model "N=1 deg/sqrt(h)" --gyro-quantizer "0.001 deg" --kind increment
+       --out-unit deg --rate 100 --duration 20 --seed 4 --force -o quantized.csv)
+simo_check(cli_simulate_quantizer_steps "cli_simulate_quantizer"
+  -DFILE=${SIMO_DIR}/quantized.csv -DCOLUMN=1
+  "-DALL=^-?[0-9]+(\\.[0-9]?[0-9]?[0-9]?(0000000+[0-9]*|9999999+[0-9]*)?)?$")
+simo_check(cli_simulate_quantizer_sidecar "cli_simulate_quantizer"
+  -DFILE=${SIMO_DIR}/quantized.csv.json "-DJSON=gyro/quantizer_step=^1\\.745329251994[0-9]*e-05$")
+sigmatau_cli_test(NAME cli_simulate_quantizer_dimension EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "--gyro-quantizer"
+  ARGS simulate --model "N=1 deg/sqrt(h)" --gyro-quantizer "0.001 deg/s" --rate 100 --duration 1
+       -o bad.csv)
+
+# --- per-axis models: x and the group yz get their own terms (sidecar, SI: 0.15 deg/sqrt(h) =
+# 4.3633e-5 rad/s/sqrt(Hz), 1.5 deg/sqrt(h) = 4.3633e-4, 3 deg/h = 1.4544e-5 rad/s). The ';' of
+# the syntax is CMake's list separator, so these commands run from a bash script that turns each
+# '|' into ';': $1 is sigmatau, $2 the expected exit code, $3 a grep pattern for stderr, then the
+# model options.
+file(WRITE ${SIMO_DIR}/per_axis.sh [=[
+cmd=$1; expected=$2; pattern=$3; shift 3
+args=()
+for a in "$@"; do args+=("${a//|/;}"); done
+err=$("$cmd" simulate "${args[@]}" --rate 100 --duration 10 --force 2>&1 >/dev/null)
+code=$?
+if [ "$code" != "$expected" ]; then echo "exit $code, expected $expected: $err"; exit 1; fi
+if [ -n "$pattern" ] && ! printf '%s' "$err" | grep -q -- "$pattern"; then
+  echo "stderr '$err' lacks '$pattern'"; exit 1
+fi
+]=])
+add_test(NAME cli_simulate_per_axis
+         COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 0 ""
+                 --model "x: N=0.15 deg/sqrt(h)| yz: N=1.5 deg/sqrt(h), B=3 deg/h"
+                 --accel-model "z: N=60 ug/sqrt(Hz)" --sensors gyro,accel -o per_axis.csv
+         WORKING_DIRECTORY ${SIMO_DIR})
+simo_check(cli_simulate_per_axis_sidecar "cli_simulate_per_axis"
+  -DFILE=${SIMO_DIR}/per_axis.csv.json
+  "-DJSON=gyro/noise/0/white=^4\\.3633231[0-9]*e-05$@@gyro/noise/1/white=^0\\.00043633231[0-9]*$@@gyro/noise/2/bias_instability=^1\\.45444104[0-9]*e-05$@@accel/noise/2/white=^0\\.00058839[0-9]*$")
+simo_check(cli_simulate_per_axis_absent "cli_simulate_per_axis"
+  -DFILE=${SIMO_DIR}/per_axis.csv.json "-DJSON=gyro/noise/0=^{[^\"]*\"white\"[^,]*}$@@accel/noise/0=^{[^\"]*}$")
+add_test(NAME cli_simulate_per_axis_unlabelled
+         COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 2 "has no axis label"
+                 --model "x: N=0.15 deg/sqrt(h)| N=1 deg/sqrt(h)" -o bad.csv
+         WORKING_DIRECTORY ${SIMO_DIR})
+add_test(NAME cli_simulate_per_axis_twice
+         COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 2 "axis y is given twice"
+                 --model "xy: N=0.15 deg/sqrt(h)| y: N=1 deg/sqrt(h)" -o bad.csv
+         WORKING_DIRECTORY ${SIMO_DIR})
+
+# --- --truth: gx goes 1 -> 2 deg/s over 10 s, gz 0 -> -4 deg/s, held after; with scale 1 % and
+# bias 1 deg/s on x the noise-free output is 1.01 x + 1 (t = 5 s: 2.515; t = 11 s: 3.02).
+file(WRITE ${SIMO_DIR}/truth.csv "t,gx,gy,gz\n0,1,0,0\n10,2,0,-4\n")
+sigmatau_cli_test(NAME cli_simulate_truth EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate --truth truth.csv --truth-unit deg/s --sensors gyro
+       --gyro-bias "1 deg/s,0 deg/s,0 deg/s" --gyro-scale "1 %,0,0" --out-unit deg/s --rate 1
+       --duration 12 --force -o truth_out.csv)
+simo_check(cli_simulate_truth_values "cli_simulate_truth" -DFILE=${SIMO_DIR}/truth_out.csv
+  "-DLINES=2=^0,2\\.01(0000000+[0-9]*|99999999+[0-9]*)?,0,0$@@7=^5,2\\.515(0000000+[0-9]*|4999999+[0-9]*)?,0,-2(\\.0000000+[0-9]*|\\.9999999+[0-9]*)?$@@13=^11,3\\.02(0000000+[0-9]*|99999999+[0-9]*)?,0,-4(\\.0000000+[0-9]*)?$")
+simo_check(cli_simulate_truth_sidecar "cli_simulate_truth" -DFILE=${SIMO_DIR}/truth_out.csv.json
+  "-DJSON=truth_series/rows=^2$@@truth_series/source=truth\\.csv$")
+sigmatau_cli_test(NAME cli_simulate_truth_missing_columns EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "truth\\.csv.*ax"
+  ARGS simulate --truth truth.csv --sensors gyro,accel --rate 1 --duration 2 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_truth_unit_alone EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "--truth-unit is given without --truth"
+  ARGS simulate --truth-unit deg/s --model "N=1 deg/sqrt(h)" --rate 1 --duration 2 -o bad.csv)
+sigmatau_cli_test(NAME cli_simulate_truth_and_positions EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "either --truth or --positions"
+  ARGS simulate --truth truth.csv --positions 6 --rate 10 -o bad.csv)
