@@ -114,6 +114,22 @@ LogOptions log_options_from(const LogArguments& args) {
   return options;
 }
 
+void note_topic_choice(const std::string& input, const TimingReport& timing) {
+  if (timing.bag_topics.empty()) return;
+  std::string list;
+  for (const BagTopic& t : timing.bag_topics) {
+    if (!list.empty()) list += ", ";
+    list += t.name + " (" + t.type + ", " +
+            (t.messages < 0 ? std::string("count not stated")
+                            : std::to_string(t.messages) + (t.messages == 1 ? " message" : " messages")) +
+            ")";
+  }
+  std::fprintf(stderr,
+               "sigmatau: note: %s: reading %s, the only sensor_msgs/Imu topic (choose with "
+               "--topic); its topics: %s\n",
+               input.c_str(), timing.bag_topic.c_str(), list.c_str());
+}
+
 void note_reordering(const std::string& input, const TimingReport& timing,
                      std::int64_t reorder_window) {
   if (timing.reordered_samples <= 0) return;
@@ -146,6 +162,7 @@ LoadedChannels load_channels(const LogArguments& args) {
   });
   progress.finish();
   Log& log = loaded.log;
+  note_topic_choice(args.input, log.timing);
   note_reordering(args.input, log.timing, options.reorder_window);
   if (options.gaps == GapPolicy::fill) fill_gaps(log);
   if (log.channels.empty() || log.channels[0].empty()) {

@@ -51,6 +51,10 @@ LoadedChannels load_channels(const LogArguments& args);
 /// The reader options of the arguments (validated as load_channels does).
 LogOptions log_options_from(const LogArguments& args);
 
+/// ROS bags read without --topic: prints a note on stderr naming the topic picked (the only
+/// sensor_msgs/Imu one) and listing the bag's topics with types and counts. Nothing otherwise.
+void note_topic_choice(const std::string& input, const TimingReport& timing);
+
 /// ROS bags: prints a note on stderr when messages arrived out of stamp order and were sorted
 /// within the reorder window (how many, the largest lateness [s], the window [messages]).
 /// Prints nothing when there was no reordering.

@@ -196,6 +196,22 @@ TEST_CASE("without a topic the only sensor_msgs/Imu topic is read") {
     const Log log = read_log(o);
     CHECK(log.timing.bag_topic == "/imu/data");
     check_values(log, m);
+    // The topics as listed when the Imu topic was picked: both, with their types; the /tf
+    // count is 20 (one after every 10th of 200 Imu messages) where the bag states counts.
+    REQUIRE(log.timing.bag_topics.size() == 2);
+    const auto& listed = log.timing.bag_topics;
+    const bool tf_first = listed[0].name == "/tf";
+    const BagTopic& tf = listed[tf_first ? 0 : 1];
+    const BagTopic& imu = listed[tf_first ? 1 : 0];
+    CHECK(tf.name == "/tf");
+    CHECK(tf.type == "tf2_msgs/TFMessage");
+    CHECK(imu.name == "/imu/data");
+    CHECK(imu.type == "sensor_msgs/Imu");
+    if (imu.messages >= 0) CHECK(imu.messages == 200);
+    if (tf.messages >= 0) CHECK(tf.messages == 20);
+    // Asked for by name, no listing.
+    o.topic = "/imu/data";
+    CHECK(read_log(o).timing.bag_topics.empty());
   }
 }
 

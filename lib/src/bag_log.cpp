@@ -184,6 +184,7 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
                   "; its topics: " + topic_list(backend_->topics(true)));
     }
     topic_ = imu.front()->name;
+    listed_ = topics;
   }
   if (!backend_->select(topic_)) {
     throw Error(file_ + ": no topic " + topic_ + " in the bag; its topics: " +

@@ -34,6 +34,9 @@ class BagLog {
 
   const ColumnSelection& selection() const { return selection_; }
   const std::string& topic() const { return topic_; }
+  /// The bag's topics as listed when no topic was asked for and the only sensor_msgs/Imu topic
+  /// was picked (counts -1 where the bag does not state them); empty when a topic was given.
+  const std::vector<BagTopic>& topics_listed() const { return listed_; }
 
   /// Appends up to max_rows rows to `block` (values sized to the channels, t_s). Returns the
   /// count, 0 at the end. Throws ParseError on corrupt data, a message later than the reorder
@@ -62,6 +65,7 @@ class BagLog {
   NonFinitePolicy nonfinite_;
   BagStamp stamp_;
   std::string topic_;
+  std::vector<BagTopic> listed_;
   ColumnSelection selection_;
   std::vector<int> fields_;  // per channel: 0..2 gyro, 3..5 accel
   // Reorder window: a min-heap on (key_ns, seq) of at most window_ + 1 messages.

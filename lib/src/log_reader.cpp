@@ -115,6 +115,7 @@ const TimingReport& LogReader::timing() const {
       impl_->report.reordered_samples = impl_->bag->reordered_samples();
       impl_->report.max_reorder_s = impl_->bag->max_reorder_s();
       impl_->report.bag_topic = impl_->bag->topic();
+      impl_->report.bag_topics = impl_->bag->topics_listed();
     }
     impl_->report_stale = false;
   }

@@ -43,6 +43,11 @@ sigmatau_cli_test(NAME cli_bags_adev_topic EXIT 0
 sigmatau_cli_test(NAME cli_bags_auto_topic_unindexed EXIT 0
   STDOUT "/imu_unindexed\\.bag: 20000 samples at 200 Hz"
   ARGS adev ${bag_dir}/imu_unindexed.bag --columns gx)
+# Without --topic the choice is named on stderr with the bag's topics, types and counts.
+sigmatau_cli_test(NAME cli_bags_auto_topic_listed EXIT 0
+  STDERR "note: .*imu\\.bag: reading /imu/data, the only sensor_msgs/Imu topic \\(choose with --topic\\); its topics: /imu/data \\(sensor_msgs/Imu, 20000 messages\\), /tf \\(tf2_msgs/TFMessage, 1000 messages\\)"
+  ARGS adev ${bag_dir}/imu.bag --columns gz)
+list(APPEND bag_tests cli_bags_auto_topic_listed)
 sigmatau_cli_test(NAME cli_bags_stamp_receive EXIT 0 STDOUT "20000 samples at 200 Hz"
   ARGS adev ${bag_dir}/imu.bag --stamp receive --columns ax --reorder-window 0)
 sigmatau_cli_test(NAME cli_bags_two_imu_topics EXIT 2

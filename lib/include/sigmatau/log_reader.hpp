@@ -167,6 +167,10 @@ struct TimingReport {
   std::int64_t reordered_samples = 0;
   double max_reorder_s = 0;
   std::string bag_topic;  ///< ROS bags: the topic read (empty for other inputs)
+  /// ROS bags read without LogOptions::topic: the bag's topics as listed when its only
+  /// sensor_msgs/Imu topic was picked (counts -1 where the bag does not state them without a
+  /// full scan); empty when a topic was given and for other inputs.
+  std::vector<BagTopic> bag_topics;
 };
 
 /// Streaming reader. The constructor opens the input and reads up to the first data row (so the
