@@ -7,10 +7,9 @@
 namespace {
 /// Scratch files with a bag extension: <pid>.bag, .mcap, .db3.
 const std::string& bag_scratch(int kind) {
-  static const std::string names[3] = {
-      "/tmp/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + ".bag",
-      "/tmp/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + ".mcap",
-      "/tmp/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + ".db3"};
+  static const std::string names[3] = {sigmatau::fuzz::scratch_file(".bag"),
+                                       sigmatau::fuzz::scratch_file(".mcap"),
+                                       sigmatau::fuzz::scratch_file(".db3")};
   return names[kind];
 }
 }  // namespace

@@ -12,10 +12,22 @@
 
 namespace sigmatau::fuzz {
 
-/// A file in /tmp named after the process, rewritten for every input.
+/// The directory of the scratch files: /dev/shm when there is one (memory: rewriting a file on
+/// disk for every input was the harnesses' largest cost after the read buffers), else /tmp.
+inline const std::string& scratch_dir() {
+  static const std::string dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+  return dir;
+}
+
+/// A scratch file named after the process with `suffix` (e.g. ".dat", ".bag"), rewritten for
+/// every input.
+inline std::string scratch_file(const char* suffix) {
+  return scratch_dir() + "/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + suffix;
+}
+
+/// The scratch file of the text and binary harnesses.
 inline const std::string& scratch_path() {
-  static const std::string path =
-      "/tmp/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + ".dat";
+  static const std::string path = scratch_file(".dat");
   return path;
 }
 
