@@ -438,6 +438,44 @@ TEST_CASE("bags are recognised by magic bytes, extension or a metadata.yaml fold
   CHECK(error_of(o).find("missing.bag: cannot open") != std::string::npos);
 }
 
+TEST_CASE("the index is used: chunks without the topic are never read") {
+  // 100 Imu messages, five 10 kB /tf messages (8 KiB chunks: each closes a chunk, so the 2nd to
+  // 5th /tf chunks hold /tf alone), 100 more Imu messages. One /tf-only chunk then gets a broken
+  // lz4 frame: an indexed bag skips it by its chunk info, a sequential scan must open it.
+  const auto m = make_messages(200, 15);
+  for (const bool indexed : {true, false}) {
+    CAPTURE(indexed);
+    TempDir dir;
+    const std::string path = dir.file("skip.bag");
+    Ros1BagWriter w(path, opts(Compression::lz4, indexed, 8 * 1024));
+    const auto tf = w.add_connection("/tf", "tf2_msgs/TFMessage");
+    const auto imu = w.add_connection("/imu/data", "sensor_msgs/Imu");
+    for (std::size_t i = 0; i < 100; ++i) w.write_imu(imu, m[i]);
+    const std::size_t before = w.chunk_positions().size();
+    for (int k = 0; k < 5; ++k) w.write_message(tf, m[99].receive_ns, std::string(10000, 'x'));
+    REQUIRE(w.chunk_positions().size() == before + 5);
+    for (std::size_t i = 100; i < 200; ++i) w.write_imu(imu, m[i]);
+    w.finish();
+    const std::int64_t tf_only = w.chunk_positions()[before + 2];
+    std::string bytes = read_bytes(path);
+    std::uint32_t header_len = 0;
+    std::memcpy(&header_len, bytes.data() + tf_only, 4);
+    // The chunk's data (an lz4 frame) starts after its header and the 4-byte data length.
+    bytes.replace(static_cast<std::size_t>(tf_only) + 4 + header_len + 4, 4, "\xee\xee\xee\xee");
+    write_bytes(path, bytes);
+    LogOptions o;
+    o.path = path;
+    o.topic = "/imu/data";
+    if (indexed) {
+      check_values(read_log(o), m);
+    } else {
+      const std::string e = error_of(o);
+      CHECK(e.find("chunk at byte offset " + std::to_string(tf_only) + ": corrupt lz4 data") !=
+            std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("a truncated chunk is a ParseError naming its byte offset") {
   TempDir dir;
   const std::string path = dir.file("cut.bag");
