@@ -71,3 +71,7 @@ add_test(NAME cli_gaps_split_analyze_results
                  "-DPATTERN=\"segments\": \\[[^a-z]*\"duration_s\": 10\\.0,[^a-z]*\"first_sample\": 0,[^a-z]*\"samples\": 1000[^a-z]*\"duration_s\": 6\\.0,[^a-z]*\"first_sample\": 1000,[^a-z]*\"samples\": 600[^a-z]*\\]"
                  -P ${CMAKE_CURRENT_BINARY_DIR}/cli_gaps/expect_match.cmake)
 set_tests_properties(cli_gaps_split_analyze_results PROPERTIES DEPENDS cli_gaps_split_analyze)
+
+# fill: the 5.01 s hole at 10 ms holds 500 missing samples, interpolated: 1000 + 500 + 600 rows.
+sigmatau_cli_test(NAME cli_gaps_fill_adev EXIT 0 STDOUT "restart\\.csv: 2100 samples at 100 Hz"
+  ARGS adev ${gap_log} --time-column t_ms --time-unit ms --gaps fill)
