@@ -66,14 +66,13 @@ void FlickerFilter::block_pair(Workspace& ws, std::uint64_t key, std::int64_t pa
                                double* out) const {
   const std::int64_t L = taps_;
   const std::int64_t n = 2 * L;
-  // `out` (2L) is the scratch for the normals: first w[(2p-1)L .. (2p+1)L), then the last L.
+  // The normals go straight into the interleaved array: Re z = w[(2p-1)L .. (2p+1)L), then
+  // Im z[0, L) = Re z[L, 2L) (the same normals) and Im z[L, 2L) = w[(2p+1)L .. (2p+2)L).
   auto* z = static_cast<fftw_complex*>(ws.data);
   const std::int64_t first = (2 * pair - 1) * L;
-  fill_normal(key, first, n, out);
-  for (std::int64_t i = 0; i < n; ++i) z[i][0] = out[i];
-  for (std::int64_t i = 0; i < L; ++i) z[i][1] = out[L + i];
-  fill_normal(key, first + n, L, out);
-  for (std::int64_t i = 0; i < L; ++i) z[L + i][1] = out[i];
+  fill_normal_strided(key, first, n, &z[0][0], 2);
+  for (std::int64_t i = 0; i < L; ++i) z[i][1] = z[L + i][0];
+  fill_normal_strided(key, first + n, L, &z[L][1], 2);
   fftw_execute_dft(static_cast<fftw_plan>(forward_), z, z);
   const auto* h = static_cast<const fftw_complex*>(spectrum_);
   for (std::int64_t k = 0; k < n; ++k) {

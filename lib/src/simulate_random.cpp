@@ -110,9 +110,11 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   return q;
 }
 
-/// Calls gen(rng, out, n) for each sub-block piece covering [first, first + count).
+/// Calls gen(rng, out, n, stride) for each sub-block piece covering [first, first + count), the
+/// values of sample first + i going to out[i * stride].
 template <class Gen>
-void fill(std::uint64_t key, std::int64_t first, std::int64_t count, double* out, Gen gen) {
+void fill(std::uint64_t key, std::int64_t first, std::int64_t count, double* out, Gen gen,
+          std::int64_t stride = 1) {
   constexpr std::int64_t S = kRandomSubBlock;
   std::vector<double> scratch;
   std::int64_t k = first;
@@ -124,11 +126,12 @@ void fill(std::uint64_t key, std::int64_t first, std::int64_t count, double* out
     const std::int64_t offset = k - block_start;
     const std::int64_t n = std::min(S - offset, end - k);
     if (offset == 0 && n == S) {
-      gen(rng, out + (k - first), S);
+      gen(rng, out + (k - first) * stride, S, stride);
     } else {
       scratch.resize(static_cast<std::size_t>(S));
-      gen(rng, scratch.data(), S);
-      std::memcpy(out + (k - first), scratch.data() + offset, static_cast<std::size_t>(n) * sizeof(double));
+      gen(rng, scratch.data(), S, std::int64_t{1});
+      double* o = out + (k - first) * stride;
+      for (std::int64_t i = 0; i < n; ++i) o[i * stride] = scratch[static_cast<std::size_t>(offset + i)];
     }
     k += n;
   }
@@ -145,13 +148,24 @@ std::uint64_t stream_key(std::uint64_t seed, int sensor, int axis, int term) {
 
 void fill_normal(std::uint64_t key, std::int64_t first, std::int64_t count, double* out) {
   const Ziggurat& z = ziggurat();
-  fill(key, first, count, out, [&z](Xoshiro256pp& rng, double* o, std::int64_t n) {
+  fill(key, first, count, out, [&z](Xoshiro256pp& rng, double* o, std::int64_t n, std::int64_t) {
     for (std::int64_t i = 0; i < n; ++i) o[i] = normal(rng, z);
   });
 }
 
+void fill_normal_strided(std::uint64_t key, std::int64_t first, std::int64_t count, double* out,
+                         std::int64_t stride) {
+  const Ziggurat& z = ziggurat();
+  fill(
+      key, first, count, out,
+      [&z](Xoshiro256pp& rng, double* o, std::int64_t n, std::int64_t step) {
+        for (std::int64_t i = 0; i < n; ++i) o[i * step] = normal(rng, z);
+      },
+      stride);
+}
+
 void fill_uniform_centered(std::uint64_t key, std::int64_t first, std::int64_t count, double* out) {
-  fill(key, first, count, out, [](Xoshiro256pp& rng, double* o, std::int64_t n) {
+  fill(key, first, count, out, [](Xoshiro256pp& rng, double* o, std::int64_t n, std::int64_t) {
     for (std::int64_t i = 0; i < n; ++i) o[i] = rng.uniform_open() - 0.5;
   });
 }

@@ -13,6 +13,10 @@ std::uint64_t stream_key(std::uint64_t seed, int sensor, int axis, int term);
 
 /// Unit normals for sample indices [first, first + count) of stream `key` into out[0..count).
 void fill_normal(std::uint64_t key, std::int64_t first, std::int64_t count, double* out);
+/// The same normals written every `stride` doubles: out[i * stride], i < count (e.g. into the real
+/// or imaginary parts of an interleaved complex array).
+void fill_normal_strided(std::uint64_t key, std::int64_t first, std::int64_t count, double* out,
+                         std::int64_t stride);
 
 /// Uniforms on (-1/2, 1/2) for sample indices [first, first + count) of stream `key`.
 void fill_uniform_centered(std::uint64_t key, std::int64_t first, std::int64_t count, double* out);
