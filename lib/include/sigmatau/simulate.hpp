@@ -37,6 +37,8 @@
 /// Gauss-Legendre inside a rotation: exact to rounding for the angles per sample of any real
 /// schedule). A temperature profile (piecewise linear in time) drives the bias temperature
 /// coefficients and adds a "temp" channel [K] (increment output: the mean over the interval).
+/// A user truth series (TruthSeries, e.g. from read_truth_csv) replaces the static truth: linear
+/// in time between its rows, held outside them; increment output integrates it exactly.
 
 #include <Eigen/Core>
 
