@@ -1,13 +1,15 @@
 // Reading ROS bags through LogReader (issue 10): throughput and memory.
 //
-//   bench_bags [--mb M] [--mcap-mb M] [--runs R] [--dir DIR] [--keep]
+//   bench_bags [--mb M] [--mcap-mb M] [--bz2-mb M] [--db3-mb M] [--runs R] [--dir DIR] [--keep]
 //
 // Writes into DIR (default: the temp directory) a ROS 1 bag of about M MB of messages (default
 // 1000; sensor_msgs/Imu at 200 Hz on /imu/data with a /tf message every 20th, 768 KiB chunks as
-// rosbag record writes them), uncompressed and with lz4 chunks, MCAP files of about --mcap-mb MB
-// (default 500; chunks uncompressed, zstd and lz4, written by the in-memory test writer, hence
-// the smaller default), and as a baseline the same Imu rows as a raw f64 binary log (7 channels:
-// t and the six values). Each file is read through LogReader (all six channels and the time
+// rosbag record writes them), uncompressed and with lz4 chunks, and with bz2 chunks at --bz2-mb
+// (default 200: bz2 decompresses at tens of MB/s), MCAP files of about --mcap-mb MB (default 500;
+// chunks uncompressed, zstd and lz4, written by the in-memory test writer, hence the smaller
+// default), rosbag2 SQLite files of about --db3-mb MB (default 300; plain and per-message zstd),
+// and as a baseline the same Imu rows as a raw f64 binary log (7 channels: t and the six values).
+// A size of 0 leaves that format out. Each file is read through LogReader (all six channels and the time
 // column) in a child process started with posix_spawn; the child reports its own peak RSS
 // (VmHWM of /proc/self/status: the high-water mark of its fresh address space; wait4's ru_maxrss
 // would include the parent's, which exec carries over from a CLONE_VM spawn). Reported, as medians over R runs (default 3):
@@ -108,6 +110,22 @@ void write_mcap(const std::string& path, std::int64_t n, const std::string& comp
   t2::write_mcap(path, {imu}, o);
 }
 
+void write_db3(const std::string& path, std::int64_t n, bool zstd) {
+  t2::Ros2Topic imu;
+  imu.values.reserve(static_cast<std::size_t>(n));
+  std::mt19937_64 rng(7);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Ros1Imu m = message(i, rng);
+    t2::ImuValue v;
+    v.header_ns = m.header_ns;
+    v.receive_ns = m.receive_ns;
+    std::copy(m.gyro, m.gyro + 3, v.gyro);
+    std::copy(m.accel, m.accel + 3, v.accel);
+    imu.values.push_back(v);
+  }
+  t2::write_db3(path, {imu}, zstd);
+}
+
 /// Child mode: read `path` through LogReader, print the rows.
 int read_child(const std::string& path, bool binary) {
   sigmatau::LogOptions o;
@@ -193,7 +211,7 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--read") == 0) return read_child(argv[2], false);
   if (argc == 3 && std::strcmp(argv[1], "--read-binary") == 0) return read_child(argv[2], true);
-  double mb = 1000, mcap_mb = 500;
+  double mb = 1000, mcap_mb = 500, bz2_mb = 200, db3_mb = 300;
   int runs = 3;
   bool keep = false;
   fs::path dir = fs::temp_directory_path() / ("sigmatau_bench_bags_" + std::to_string(getpid()));
@@ -203,6 +221,10 @@ int main(int argc, char** argv) {
       mb = std::atof(argv[++i]);
     } else if (a == "--mcap-mb" && i + 1 < argc) {
       mcap_mb = std::atof(argv[++i]);
+    } else if (a == "--bz2-mb" && i + 1 < argc) {
+      bz2_mb = std::atof(argv[++i]);
+    } else if (a == "--db3-mb" && i + 1 < argc) {
+      db3_mb = std::atof(argv[++i]);
     } else if (a == "--runs" && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--dir" && i + 1 < argc) {
@@ -211,7 +233,8 @@ int main(int argc, char** argv) {
       keep = true;
     } else {
       std::fprintf(stderr,
-                   "usage: bench_bags [--mb M] [--mcap-mb M] [--runs R] [--dir DIR] [--keep]\n");
+                   "usage: bench_bags [--mb M] [--mcap-mb M] [--bz2-mb M] [--db3-mb M] [--runs R] "
+                   "[--dir DIR] [--keep]\n");
       return 2;
     }
   }
@@ -219,28 +242,49 @@ int main(int argc, char** argv) {
   fs::create_directories(dir);
   const auto n_ros1 = static_cast<std::int64_t>(mb * 1e6 / kRos1MessageBytes);
   const auto n_mcap = static_cast<std::int64_t>(mcap_mb * 1e6 / kMcapMessageBytes);
+  const auto n_bz2 = static_cast<std::int64_t>(bz2_mb * 1e6 / kRos1MessageBytes);
+  const auto n_db3 = static_cast<std::int64_t>(db3_mb * 1e6 / kMcapMessageBytes);
 
   struct Case {
     std::string name, path, uncompressed;
     bool binary = false;
+    std::int64_t messages = 0;
   };
   std::vector<Case> cases;
   const auto file = [&](const char* name) { return (dir / name).string(); };
-  std::fprintf(stderr, "writing %lld ROS 1 messages, %lld MCAP messages into %s ...\n",
-               static_cast<long long>(n_ros1), static_cast<long long>(n_mcap), dir.c_str());
-  write_binary(file("imu.f64"), n_ros1);
-  cases.push_back({"raw f64 binary log (baseline)", file("imu.f64"), file("imu.f64"), true});
-  write_ros1(file("none.bag"), n_ros1, Ros1BagWriter::Compression::none);
-  cases.push_back({"ROS 1 bag, uncompressed", file("none.bag"), file("none.bag")});
-  write_ros1(file("lz4.bag"), n_ros1, Ros1BagWriter::Compression::lz4);
-  cases.push_back({"ROS 1 bag, lz4", file("lz4.bag"), file("none.bag")});
+  std::fprintf(stderr,
+               "writing %lld ROS 1 messages (%lld bz2), %lld MCAP messages, %lld db3 messages into "
+               "%s ...\n",
+               static_cast<long long>(n_ros1), static_cast<long long>(n_bz2),
+               static_cast<long long>(n_mcap), static_cast<long long>(n_db3), dir.c_str());
+  if (mb > 0) {
+    write_binary(file("imu.f64"), n_ros1);
+    cases.push_back({"raw f64 binary log (baseline)", file("imu.f64"), file("imu.f64"), true, n_ros1});
+    write_ros1(file("none.bag"), n_ros1, Ros1BagWriter::Compression::none);
+    cases.push_back({"ROS 1 bag, uncompressed", file("none.bag"), file("none.bag"), false, n_ros1});
+    write_ros1(file("lz4.bag"), n_ros1, Ros1BagWriter::Compression::lz4);
+    cases.push_back({"ROS 1 bag, lz4", file("lz4.bag"), file("none.bag"), false, n_ros1});
+  }
+  if (bz2_mb > 0) {
+    // bz2 is measured on its own (smaller) size: its uncompressed reference is written too.
+    write_ros1(file("none_small.bag"), n_bz2, Ros1BagWriter::Compression::none);
+    write_ros1(file("bz2.bag"), n_bz2, Ros1BagWriter::Compression::bz2);
+    cases.push_back({"ROS 1 bag, bz2", file("bz2.bag"), file("none_small.bag"), false, n_bz2});
+  }
   if (mcap_mb > 0) {
     write_mcap(file("none.mcap"), n_mcap, "");
-    cases.push_back({"MCAP, uncompressed", file("none.mcap"), file("none.mcap")});
+    cases.push_back({"MCAP, uncompressed", file("none.mcap"), file("none.mcap"), false, n_mcap});
     write_mcap(file("zstd.mcap"), n_mcap, "zstd");
-    cases.push_back({"MCAP, zstd", file("zstd.mcap"), file("none.mcap")});
+    cases.push_back({"MCAP, zstd", file("zstd.mcap"), file("none.mcap"), false, n_mcap});
     write_mcap(file("lz4.mcap"), n_mcap, "lz4");
-    cases.push_back({"MCAP, lz4", file("lz4.mcap"), file("none.mcap")});
+    cases.push_back({"MCAP, lz4", file("lz4.mcap"), file("none.mcap"), false, n_mcap});
+  }
+  if (db3_mb > 0) {
+    write_db3(file("none.db3"), n_db3, false);
+    cases.push_back({"rosbag2 SQLite .db3", file("none.db3"), file("none.db3"), false, n_db3});
+    write_db3(file("zstd.db3"), n_db3, true);
+    cases.push_back({"rosbag2 SQLite .db3, per-message zstd", file("zstd.db3"), file("none.db3"),
+                     false, n_db3});
   }
 
   std::printf("Reading through LogReader (6 channels + time), median of %d run(s), one core; "
@@ -259,7 +303,7 @@ int main(int argc, char** argv) {
     }
     const double stored = static_cast<double>(fs::file_size(c.path)) / 1e6;
     const double raw = static_cast<double>(fs::file_size(c.uncompressed)) / 1e6;
-    const std::int64_t messages = c.path.find(".mcap") != std::string::npos ? n_mcap : n_ros1;
+    const std::int64_t messages = c.messages;
     std::printf("| %s | %.0f | %.0f | %lld | %.0f | %.0f | %.1f |\n", c.name.c_str(), stored, raw,
                 static_cast<long long>(messages), raw / median(cpu), raw / median(wall),
                 static_cast<double>(rss) / 1024.0);

@@ -8,6 +8,7 @@
 // the first 2^53 ns = 104 days of a bag). The TimingAccumulator is fed the same relative integer
 // nanoseconds, so its intervals are exact and its gap start times match t_s.
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,9 +69,9 @@ class BagLog {
   std::vector<BagTopic> listed_;
   ColumnSelection selection_;
   std::vector<int> fields_;  // per channel: 0..2 gyro, 3..5 accel
-  // Reorder window: a min-heap on (key_ns, seq) of at most window_ + 1 messages.
+  // Reorder window: at most window_ + 1 messages sorted on (key_ns, seq).
   std::size_t window_ = 0;
-  std::vector<Pending> heap_;
+  std::deque<Pending> pending_;
   std::uint64_t seq_ = 0;
   bool eof_ = false;
   bool emitted_ = false;
