@@ -437,12 +437,15 @@ std::int64_t fill_gaps(Log& log) {
                            "(use --gaps split)");
     }
     if (dt > kGapFactor * nominal_s) {
-      missing += static_cast<std::int64_t>(std::llround(dt / nominal_s)) - 1;
-      if (missing > static_cast<std::int64_t>(n)) {
+      const double spans = std::round(dt / nominal_s);  // intervals the gap spans
+      // Compared in double before any integer conversion: absurd stamps can make a gap of more
+      // than 2^63 intervals, where llround overflowed (found by fuzz_text_log).
+      if (!(static_cast<double>(missing) + spans - 1 <= static_cast<double>(n))) {
         throw Error(file + ": --gaps fill would more than double the log (a gap of " +
                     format_seconds(dt) + " before row " + std::to_string(i) +
                     "); use --gaps split");
       }
+      missing += static_cast<std::int64_t>(spans) - 1;
     }
   }
   if (missing == 0) return 0;
