@@ -18,6 +18,7 @@
 #include <string>
 
 #include "allan_dd.hpp"
+#include "allan_stream_noise.hpp"
 #include "allan_sums.hpp"
 #include "sigmatau/error.hpp"
 
@@ -25,6 +26,7 @@ namespace sigmatau {
 namespace {
 
 using detail::DoubleDouble;
+using detail::NoiseState;
 using detail::SumAndError;
 using detail::two_sum;
 
@@ -75,101 +77,10 @@ int log2_exact(std::int64_t p) {
   return j;
 }
 
-/// Sums of a series and of its lag-1 products, for one difference order, with the first value
-/// subtracted (a shift changes no autocorrelation, and it keeps a drifting series from
-/// cancelling). Each block is summed in plain double and carried in double-double.
-struct AcfSums {
-  std::int64_t n = 0;
-  double shift = 0, first = 0, last = 0;
-  DoubleDouble s1, s2, s12;
-  void add_block(const double* a, std::size_t len) {
-    if (len == 0) return;
-    if (n == 0) {
-      shift = a[0];
-      first = 0.0;
-    }
-    // kLanes independent partial sums (vectorisable without reordering any lane's additions).
-    constexpr std::size_t kLanes = 8;
-    double t1[kLanes] = {}, t2[kLanes] = {}, t12[kLanes] = {};
-    const double before = n > 0 ? last : 0.0;  // 0: no lag-1 product for the first value
-    std::size_t i = 0;
-    if (len > 0) {
-      const double b = a[0] - shift;
-      t1[0] += b;
-      t2[0] += b * b;
-      t12[0] += before * b;
-      i = 1;
-    }
-    for (; i + kLanes <= len; i += kLanes) {
-      for (std::size_t k = 0; k < kLanes; ++k) {
-        const double b = a[i + k] - shift;
-        const double p = a[i + k - 1] - shift;
-        t1[k] += b;
-        t2[k] += b * b;
-        t12[k] += p * b;
-      }
-    }
-    for (std::size_t k = 0; i < len; ++i, ++k) {
-      const double b = a[i] - shift;
-      const double p = a[i - 1] - shift;
-      t1[k] += b;
-      t2[k] += b * b;
-      t12[k] += p * b;
-    }
-    for (std::size_t k = 0; k < kLanes; ++k) {
-      s1.add(t1[k]);
-      s2.add(t2[k]);
-      s12.add(t12[k]);
-    }
-    last = a[len - 1] - shift;
-    n += static_cast<std::int64_t>(len);
-  }
-  /// Lag-1 autocorrelation (Riley & Greenhall 2004 eq. 2) from the sums; NaN if constant.
-  double r1() const {
-    if (n < 2) return std::numeric_limits<double>::quiet_NaN();
-    using ld = long double;
-    const ld nn = static_cast<ld>(n);
-    const ld S1 = static_cast<ld>(s1.hi) + s1.lo;
-    const ld S2 = static_cast<ld>(s2.hi) + s2.lo;
-    const ld S12 = static_cast<ld>(s12.hi) + s12.lo;
-    const ld mean = S1 / nn;
-    const ld den = S2 - nn * mean * mean;
-    const ld num = S12 - mean * (S1 - last) - mean * (S1 - first) + (nn - 1) * mean * mean;
-    if (!(den > 0)) return std::numeric_limits<double>::quiet_NaN();
-    return static_cast<double>(num / den);
-  }
-};
-
-/// Noise identification state of one averaging factor.
-struct NoiseState {
-  AcfSums sums[4];          // z differenced 0..3 times
-  double previous[4] = {};  // last value of each differenced series
-  std::vector<double> kept;  // the first kKeptMeans + 1 values of x[k m] (B1 ratio)
-  std::int64_t next_k = 0;   // next k whose x[k m] is read
-  std::vector<double> batch;  // new z values of the current chunk
-  /// Adds the batch to the sums of each difference order (differencing it in place).
-  void flush() {
-    std::size_t start = 0;
-    for (int d = 0; d < 4 && start < batch.size(); ++d) {
-      const bool had = sums[d].n > 0;
-      const double before = previous[d];
-      sums[d].add_block(batch.data() + start, batch.size() - start);
-      previous[d] = batch.back();
-      for (std::size_t i = batch.size() - 1; i > start; --i) batch[i] -= batch[i - 1];
-      if (had) {
-        batch[start] -= before;
-      } else {
-        ++start;
-      }
-    }
-    batch.clear();
-  }
-};
-
 struct Level {
   std::int64_t stride = 1;
   std::int64_t begin = 0;  // level index of element 0 of the buffers
-  std::vector<double> xh, xl, ph, pl;
+  detail::Doubles xh, xl, ph, pl;
   std::int64_t x_end() const { return begin + static_cast<std::int64_t>(xh.size()); }
   std::int64_t p_end() const { return begin + static_cast<std::int64_t>(ph.size()); }
 };
@@ -204,7 +115,6 @@ struct AllanStream::Impl {
   DoubleDouble p_run;
   std::int64_t samples = 0;  // values added
   std::int64_t points = 0;   // phase points emitted
-  std::vector<double> nh, nl, nph, npl;  // new level-0 points of a chunk
   std::vector<double> pending;  // input not yet processed (less than kChunk samples)
 
   std::int64_t stride_for(Statistic s, std::int64_t m) const {
@@ -214,22 +124,19 @@ struct AllanStream::Impl {
     return std::min(dividing, cap);
   }
 
-  void emit_point(double hi, double lo) {
-    nh.push_back(hi);
-    nl.push_back(lo);
-    if (need_p) {
-      nph.push_back(p_run.hi);
-      npl.push_back(p_run.lo);
-      p_run.add(hi, lo);
-    }
-    ++points;
-  }
-
+  /// Integrates a chunk into nh, nl (its new level-0 points) and, for MDEV, nph, npl (the
+  /// running sum P before each point).
   void process_chunk(std::span<const double> y) {
-    nh.clear();
-    nl.clear();
-    nph.clear();
-    npl.clear();
+    std::size_t w = 0;  // points written
+    const bool adds_start = !started && kind != DataKind::phase;
+    const std::size_t count = y.size() + (adds_start ? 1 : 0);
+    // The new points go straight to the end of level 0 (stride 1), which holds every point.
+    Level& base = levels[0];
+    const std::size_t old = base.xh.size();
+    base.xh.resize(old + count);
+    base.xl.resize(old + count);
+    double* nh = base.xh.data() + old;
+    double* nl = base.xl.data() + old;
     if (!started) {
       started = true;
       if (kind == DataKind::phase) {
@@ -238,27 +145,60 @@ struct AllanStream::Impl {
         long double total = 0;
         for (const double v : y) total += v;
         offset = static_cast<double>(total / static_cast<long double>(y.size()));
-        emit_point(0.0, 0.0);
+        nh[0] = 0.0;
+        nl[0] = 0.0;
+        w = 1;
       }
     }
     double finite_check = 0.0;
-    for (std::size_t i = 0; i < y.size(); ++i) {
-      const SumAndError d = two_sum(y[i], -offset);
-      finite_check += d.sum * 0.0;
-      if (kind == DataKind::phase) {
-        emit_point(d.sum, d.err);
-      } else {
-        const SumAndError t = two_sum(h, d.sum);
-        h = t.sum;
-        l += t.err + d.err;
-        const SumAndError n = two_sum(h, l);
-        emit_point(n.sum, n.err);
-        if ((samples + static_cast<std::int64_t>(i) + 1) % kRenormalise == 0) {
-          h = n.sum;
-          l = n.err;
+    if (kind == DataKind::phase) {
+      for (std::size_t i = 0; i < y.size(); ++i) {
+        const SumAndError d = two_sum(y[i], -offset);
+        finite_check += d.sum * 0.0;
+        nh[w + i] = d.sum;
+        nl[w + i] = d.err;
+      }
+    } else {
+      // The running double-double phase, renormalised after every kRenormalise samples of the
+      // whole stream.
+      std::size_t i = 0;
+      while (i < y.size()) {
+        const std::int64_t done = samples + static_cast<std::int64_t>(i);
+        const std::size_t run = std::min<std::size_t>(
+            y.size() - i, static_cast<std::size_t>(kRenormalise - done % kRenormalise));
+        double hh = h, ll = l;
+        SumAndError n{hh, ll};
+        for (std::size_t j = i; j < i + run; ++j) {
+          const SumAndError d = two_sum(y[j], -offset);
+          finite_check += d.sum * 0.0;
+          const SumAndError t = two_sum(hh, d.sum);
+          hh = t.sum;
+          ll += t.err + d.err;
+          n = two_sum(hh, ll);
+          nh[w + j] = n.sum;
+          nl[w + j] = n.err;
         }
+        i += run;
+        if ((done + static_cast<std::int64_t>(run)) % kRenormalise == 0) {
+          hh = n.sum;
+          ll = n.err;
+        }
+        h = hh;
+        l = ll;
       }
     }
+    if (need_p) {
+      base.ph.resize(old + count);
+      base.pl.resize(old + count);
+      double* nph = base.ph.data() + old;
+      double* npl = base.pl.data() + old;
+      for (std::size_t k = 0; k < count; ++k) {
+        nph[k] = p_run.hi;
+        npl[k] = p_run.lo;
+        p_run.add(nh[k], nl[k]);
+      }
+    }
+    points += static_cast<std::int64_t>(count);
     if (!(finite_check == 0.0) || !std::isfinite(h)) {
       for (std::size_t i = 0; i < y.size(); ++i) {
         if (!std::isfinite(y[i])) {
@@ -269,26 +209,35 @@ struct AllanStream::Impl {
       throw Error("samples are too large to process (their sum overflows)");
     }
     samples += static_cast<std::int64_t>(y.size());
-    distribute();
+    distribute(static_cast<std::int64_t>(count));
     for (auto& tau : taus) run_terms(tau);
     feed_noise();
     trim();
   }
 
-  /// Appends the chunk's new level-0 points to every level (level j takes the points whose index
-  /// is a multiple of 2^j).
-  void distribute() {
-    const std::int64_t first = points - static_cast<std::int64_t>(nh.size());
-    for (auto& level : levels) {
+  /// Appends the chunk's `count` new points (already at the end of level 0) to the other levels
+  /// (level j takes the points whose index is a multiple of 2^j).
+  void distribute(std::int64_t count) {
+    const std::int64_t first = points - count;
+    const Level& base = levels[0];
+    auto take = [&](detail::Doubles& to, const detail::Doubles& from, std::int64_t k0,
+                    std::int64_t stride, std::size_t n) {
+      const std::size_t old = to.size();
+      to.resize(old + n);
+      const double* src = from.data() + (k0 - base.begin);
+      for (std::size_t c = 0; c < n; ++c) to[old + c] = src[static_cast<std::int64_t>(c) * stride];
+    };
+    for (std::size_t j = 1; j < levels.size(); ++j) {
+      Level& level = levels[j];
       const std::int64_t s = level.stride;
-      std::int64_t k = (first + s - 1) / s * s;
-      for (; k < points; k += s) {
-        level.xh.push_back(nh[static_cast<std::size_t>(k - first)]);
-        level.xl.push_back(nl[static_cast<std::size_t>(k - first)]);
-        if (need_p) {
-          level.ph.push_back(nph[static_cast<std::size_t>(k - first)]);
-          level.pl.push_back(npl[static_cast<std::size_t>(k - first)]);
-        }
+      const std::int64_t k0 = (first + s - 1) / s * s;
+      if (k0 >= points) continue;
+      const auto n = static_cast<std::size_t>((points - 1 - k0) / s + 1);
+      take(level.xh, base.xh, k0, s, n);
+      take(level.xl, base.xl, k0, s, n);
+      if (need_p) {
+        take(level.ph, base.ph, k0, s, n);
+        take(level.pl, base.pl, k0, s, n);
       }
     }
   }
@@ -324,19 +273,46 @@ struct AllanStream::Impl {
       const Level& level = levels[static_cast<std::size_t>(noise_level[i])];
       const std::int64_t q = m / level.stride;
       NoiseState& state = noise[i];
-      for (; state.next_k * q < level.x_end(); ++state.next_k) {
-        const auto u = static_cast<std::size_t>(state.next_k * q - level.begin);
-        if (static_cast<std::int64_t>(state.kept.size()) <= kKeptMeans) {
-          state.kept.push_back(level.xh[u] + level.xl[u]);
-        }
+      const std::int64_t k_end = (level.x_end() + q - 1) / q;  // first k with k q >= x_end
+      if (state.next_k >= k_end) continue;
+      const double* xh = level.xh.data();
+      const double* xl = level.xl.data();
+      const std::int64_t b = level.begin;  // level index of xh[0]
+      for (std::int64_t k = state.next_k;
+           k < k_end && static_cast<std::int64_t>(state.kept.size()) <= kKeptMeans; ++k) {
+        state.kept.push_back(xh[k * q - b] + xl[k * q - b]);
+      }
+      std::int64_t k = state.next_k;
+      if (kind == DataKind::rate || kind == DataKind::increment) {
+        if (k == 0) ++k;  // z needs x[(k-1) m]
+      }
+      if (k < k_end) {
+        const std::size_t old = state.batch.size();
+        state.batch.resize(old + static_cast<std::size_t>(k_end - k));
+        double* out = state.batch.data() + old;
         if (kind == DataKind::phase) {
-          state.batch.push_back(level.xh[u] + level.xl[u]);
-        } else if (state.next_k > 0) {
-          const auto v = u - static_cast<std::size_t>(q);
-          const double w = (level.xh[u] - level.xh[v]) + (level.xl[u] - level.xl[v]);
-          state.batch.push_back(w * (1.0 / static_cast<double>(m)));  // as series_at
+          for (std::int64_t j = 0; k + j < k_end; ++j) {
+            const std::int64_t u = (k + j) * q - b;
+            out[j] = xh[u] + xl[u];
+          }
+        } else {
+          const double inv_m = 1.0 / static_cast<double>(m);  // as series_at
+          const std::int64_t count = k_end - k;
+          if (q == 1) {  // the common case (octave factors): contiguous, vectorised
+            const double* h1 = xh + (k - b);
+            const double* l1 = xl + (k - b);
+            for (std::int64_t j = 0; j < count; ++j) {
+              out[j] = ((h1[j] - h1[j - 1]) + (l1[j] - l1[j - 1])) * inv_m;
+            }
+          } else {
+            for (std::int64_t j = 0; j < count; ++j) {
+              const std::int64_t u = (k + j) * q - b;
+              out[j] = ((xh[u] - xh[u - q]) + (xl[u] - xl[u - q])) * inv_m;
+            }
+          }
         }
       }
+      state.next_k = k_end;
       state.flush();
     }
   }
@@ -361,7 +337,7 @@ struct AllanStream::Impl {
       const std::int64_t drop = std::min(keep_from[j], level.x_end()) - level.begin;
       // Amortised: move only when the dead prefix is at least half the buffer.
       if (drop <= 0 || drop * 2 < static_cast<std::int64_t>(level.xh.size())) continue;
-      auto erase = [drop](std::vector<double>& v) {
+      auto erase = [drop](detail::Doubles& v) {
         const auto n = std::min<std::size_t>(static_cast<std::size_t>(drop), v.size());
         v.erase(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
       };
@@ -577,15 +553,16 @@ std::int64_t AllanStream::stride(Statistic statistic, std::int64_t m) const {
 std::size_t AllanStream::memory_bytes() const {
   const Impl& s = *impl_;
   std::size_t bytes = sizeof(Impl) + s.taus.capacity() * sizeof(TauState) +
-                      s.noise.capacity() * sizeof(NoiseState) +
-                      (s.nh.capacity() + s.nl.capacity() + s.nph.capacity() + s.npl.capacity()) *
-                          sizeof(double);
+                      s.noise.capacity() * sizeof(NoiseState);
   for (const auto& level : s.levels) {
     bytes += sizeof(Level) + (level.xh.capacity() + level.xl.capacity() + level.ph.capacity() +
                               level.pl.capacity()) *
                                  sizeof(double);
   }
-  for (const auto& noise : s.noise) bytes += noise.kept.capacity() * sizeof(double);
+  for (const auto& noise : s.noise) {
+    bytes += (noise.kept.capacity() + noise.batch.capacity() + noise.spare.capacity()) *
+             sizeof(double);
+  }
   bytes += s.pending.capacity() * sizeof(double);
   return bytes;
 }

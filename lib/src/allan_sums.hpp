@@ -1,5 +1,6 @@
 #pragma once
-// Internal: the sums of squared phase differences behind every Allan-family estimator.
+// Internal: the sums of squared phase differences behind every Allan-family estimator
+// (allan_sweep.cpp: the overlapping sweep; allan_sums.cpp: the others).
 // Every difference is formed from window sums W(k, m) = x[k+m] - x[k] of the double-double phase
 // (PhaseSeries::window_sum), never from absolute phase values, and every sum of squares is taken
 // in blocks (kLanes plain-double lanes per block, block totals carried in double-double).
@@ -44,7 +45,7 @@ std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series);
 /// D = D2 (order 2, OADEV) or D3 (order 3, OHDEV) and n = 0, 1, 2, ... (every start point).
 /// All factors are swept together, block by block, so the phase is read from memory about once
 /// per group of factors instead of once per factor.
-/// Factors below 4096 read the double-double phase itself (see kCompactMin in allan_sums.cpp).
+/// Factors below 4096 read the double-double phase itself (see kCompactMin in allan_sweep.cpp).
 std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
                                      std::span<const std::int64_t> m,
                                      std::span<const std::int64_t> counts);

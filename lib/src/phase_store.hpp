@@ -11,13 +11,13 @@
 
 namespace sigmatau::detail {
 
-struct CompactPhase;  // allan_sums.hpp
+struct CompactPhase;  // allan_sums.hpp (built in allan_sweep.cpp)
 
 struct PhaseStore {
   PhaseStorage storage;
   DoubleBuffer hi;
   DoubleBuffer lo;
-  /// The sweep copy (allan_sums.cpp: compact_phase()), guarded by `mutex` while it is built or
+  /// The sweep copy (allan_sweep.cpp: compact_phase()), guarded by `mutex` while it is built or
   /// dropped; estimators hold a shared_ptr to it while they use it.
   std::mutex mutex;
   std::shared_ptr<const CompactPhase> compact;
