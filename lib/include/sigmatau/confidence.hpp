@@ -50,6 +50,24 @@ double greenhall_edf(int alpha, int d, std::int64_t m, std::int64_t F, std::int6
 double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
                       std::int64_t n_phase_points);
 
+/// Exact EDF, 2 E[A]^2 / Var[A], of the statistic's estimator A for Gaussian discrete-time
+/// power-law noise: phase with digital spectrum |2 sin(pi f tau0)|^(alpha - 2) (white FM =
+/// independent rate samples, random-walk FM = their running sum, flicker = Kasdin's fractional
+/// filter), at averaging factor m on N phase points. No tables, no continuous-time model: time
+/// and memory O(min(N, 64 k m)) with k = 2..3 (lags of the flicker autocovariance beyond 64 filter
+/// spans are left out, < 1e-7 of the variance). NaN for totdev and outside alpha + 2d > 1.
+///
+/// Differs from equivalent_dof (Greenhall's algorithm, what Stable32 prints): for the unmodified
+/// variances Greenhall models each phase sample as the continuous phase averaged over tau0
+/// (F = m while m (d+1) <= 100, sampled phase beyond), which for white FM correlates
+/// neighbouring rate samples (lag-1 correlation 1/4). OADEV at m = 1, white FM: Greenhall
+/// ~ 18/23 (N - 2), exact 2 n^2 / (3 n - 1) with n = N - 2, ~ 2/3 (N - 2). Measured at N = 65537:
+/// +10..+25 % (-24 % random-walk FM) at m = 1; OADEV/OHDEV white FM -5..-12 % for m = 2..16 and
+/// within 0.1 % once Greenhall samples the phase (m >= 34 for d = 2); ADEV/HDEV within 2 % from
+/// m = 8; OADEV/OHDEV flicker PM 11..16 % below exact at all m (a noise whose variance depends
+/// on the sampling bandwidth); white PM identical (tests/test_edf_exact.cpp).
+double discrete_edf(Statistic statistic, int alpha, std::int64_t m, std::int64_t n_phase_points);
+
 /// Chi-squared confidence bounds for a deviation `dev` with `edf` degrees of freedom at two-sided
 /// confidence `confidence` (e.g. 0.683): sigma^2 edf / chi2_{(1+p)/2}(edf) and
 /// sigma^2 edf / chi2_{(1-p)/2}(edf) (SP 1065 eq. 45), returned as deviations.
