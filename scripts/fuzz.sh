@@ -37,8 +37,11 @@ i=0
 for u in "deg/s" "°/√h" "mdps/rt-Hz" "ug/sqrt(Hz)" "m/s^2" "%/°C" "LSB/(°/s)" "0.1 deg/h" "rad/s^1.5" "1e-3 g"; do
   printf '%s' "$u" >"$corpus/fuzz_units/seed$((i++))"
 done
-seed "$corpus/fuzz_spec" '' specs/*.yaml tests/data/specs/*.yaml
+seed "$corpus/fuzz_spec" '' specs/*.yaml tests/data/specs/*.yaml tests/data/fuzz/spec/*
+# Earlier findings (tests/data/fuzz/<harness>/) already carry their option bytes.
+cp tests/data/fuzz/text_log/* "$corpus/fuzz_text_log/" 2>/dev/null || true
 "$build/fuzz/make_bag_seeds" "$corpus/fuzz_bag"  # whole small bags (a 4 kB head is no bag)
+cp tests/data/fuzz/bag/* "$corpus/fuzz_bag/" 2>/dev/null || true
 
 status=0
 for h in "${harnesses[@]}"; do

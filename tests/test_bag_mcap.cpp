@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -400,4 +401,27 @@ TEST_CASE(
   }
   CHECK(msg.find("imu.mcap.zstd") != std::string::npos);
   CHECK(msg.find("decompress it first") != std::string::npos);
+}
+
+TEST_CASE("MCAP an empty chunk (no records) is skipped") {
+  // Found by fuzz_bag (tests/data/fuzz/bag/empty_chunk.bin): a chunk whose records are 0 bytes
+  // made the reader copy 0 bytes into a null buffer (UBSan). An empty chunk is legal MCAP: it is
+  // inserted here before the first chunk of a file without summary (no offsets to fix) and every
+  // message must still come back.
+  TempDir dir;
+  const auto topics = two_topics(120, 24);
+  const fs::path p = dir.file("empty_chunk.mcap");
+  McapOptions o = options("", false, false);
+  o.crc = false;
+  const auto layout = test::write_mcap(p, topics, o);
+  std::string content;  // start, end, uncompressed size, CRC, compression "", records length
+  content += le64(0) + le64(0) + le64(0) + std::string(4, '\0') + std::string(4, '\0') + le64(0);
+  std::string record = std::string(1, '\x06') + le64(content.size()) + content;
+  std::ifstream in(p, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  bytes.insert(static_cast<std::size_t>(layout.chunk_offsets.at(0)), record);
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
+  auto bag = detail::open_mcap(p.string());
+  check_same(read_all(*bag, "/imu/data"), topics[0].values);
 }

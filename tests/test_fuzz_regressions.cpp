@@ -109,3 +109,36 @@ TEST_CASE("--gaps fill refuses a gap of more than 2^63 intervals without overflo
   Log log = read_log(o);
   CHECK_THROWS_WITH_AS(fill_gaps(log), doctest::Contains("would more than double the log"), Error);
 }
+
+TEST_CASE("bags found by fuzz_bag read or throw sigmatau::Error") {
+  // The first byte chooses the file name extension and the options as in fuzz/fuzz_bag.cpp; the
+  // rest is the file. list_bag_topics runs on it too. Under UBSan (the sanitizer stage) undefined
+  // behaviour aborts the test.
+  Scratch dir;
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(test::test_data_dir() / "fuzz" / "bag")) {
+    CAPTURE(entry.path().string());
+    const std::string bytes = slurp(entry.path());
+    REQUIRE(!bytes.empty());
+    const auto flags = static_cast<unsigned char>(bytes[0]);
+    const char* const extensions[3] = {".bag", ".mcap", ".db3"};
+    const int kind = (flags & 3) == 3 ? 0 : (flags & 3);
+    const std::string path = dir.file(std::string("input") + extensions[kind]);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(1);
+    LogOptions o;
+    o.path = path;
+    o.stamp = (flags & 4) ? BagStamp::receive : BagStamp::header;
+    o.nonfinite = (flags & 8) ? NonFinitePolicy::skip_row : NonFinitePolicy::error;
+    constexpr std::int64_t kWindows[4] = {0, 1, 4, 10000};
+    o.reorder_window = kWindows[(flags >> 4) & 3];
+    if (flags & 64) o.topic = "/imu/data";
+    o.gaps = (flags & 128) ? GapPolicy::split : GapPolicy::report;
+    std::string r = outcome([&] { read_log(o); });
+    INFO(r);
+    CHECK((r == "ok" || r == "error"));
+    r = outcome([&] { list_bag_topics(path); });
+    CHECK((r == "ok" || r == "error"));
+    ++files;
+  }
+  CHECK(files >= 1);
+}

@@ -108,6 +108,10 @@ const char* BagFile::view(std::int64_t offset, std::size_t n, const char* what) 
 }
 
 void BagFile::read(std::int64_t offset, std::size_t n, char* dst, const char* what) {
+  if (n == 0) {  // e.g. an empty chunk: dst may be the null data() of an empty buffer
+    if (offset < 0 || offset > size_) truncated(offset, 0, what);
+    return;
+  }
   if (n < kDirectReadBytes) {
     std::memcpy(dst, view(offset, n, what), n);
     return;
