@@ -164,6 +164,11 @@ LoadedChannels load_channels(const LogArguments& args) {
   Log& log = loaded.log;
   note_topic_choice(args.input, log.timing);
   note_reordering(args.input, log.timing, options.reorder_window);
+  if (log.timing.rows_skipped_nonfinite > 0) {
+    std::fprintf(stderr, "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite skip)\n",
+                 args.input.c_str(), static_cast<long long>(log.timing.rows_skipped_nonfinite),
+                 log.timing.rows_skipped_nonfinite == 1 ? "" : "s");
+  }
   if (options.gaps == GapPolicy::fill) fill_gaps(log);
   if (log.channels.empty() || log.channels[0].empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,

@@ -153,3 +153,18 @@ for f in results.json summary.md report.html; do
 done
 ]=])
 sigmatau_robust_test(cli_robust_data_warnings_in_report "${robust_prologue}${warnings_check}")
+
+# --nonfinite skip: the rows holding NaN or Inf are dropped and counted on stderr; the default
+# (error) names the first one. 200 rows at 100 Hz with NaN in row 50 and inf in row 120.
+set(nonfinite_check [=[
+awk 'BEGIN { print "t,x"; for (i = 0; i < 200; i++) {
+  v = (i == 50) ? "nan" : (i == 120) ? "inf" : sprintf("%d", (i * 37) % 11 - 5);
+  printf "%.2f,%s\n", i / 100, v } }' >"$W/nonfinite.csv"
+run adev "$W/nonfinite.csv" --time-column t
+expect 2 "nonfinite\.csv:52:2: non-finite value"
+run adev "$W/nonfinite.csv" --time-column t --nonfinite skip --gaps split
+expect 0 "note: .*nonfinite\.csv: 2 rows with a non-finite value skipped \(--nonfinite skip\)"
+grep -q "198 samples" "$W/.stdout" || fail "expected 198 samples: $(head -1 "$W/.stdout")"
+echo "ok: 198 samples kept"
+]=])
+sigmatau_robust_test(cli_robust_nonfinite "${robust_prologue}${nonfinite_check}")
