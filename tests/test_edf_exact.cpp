@@ -257,3 +257,25 @@ TEST_CASE("Greenhall's EDF differs from the exact discrete EDF at small m (known
     }
   }
 }
+
+TEST_CASE("equivalent_dof with EdfModel: Greenhall by default, discrete where Greenhall averages") {
+  for (const Statistic statistic : kStatistics) {
+    const int d = shape_of(statistic).d;
+    for (int alpha = 2; alpha >= -2; --alpha) {
+      for (const std::int64_t m : {1, 4, 25, 33, 34, 100}) {
+        CAPTURE(static_cast<int>(statistic));
+        CAPTURE(alpha);
+        CAPTURE(m);
+        const std::int64_t N = 65537;
+        const double greenhall = equivalent_dof(statistic, alpha, m, N);
+        CHECK(equivalent_dof(statistic, alpha, m, N, EdfModel::greenhall) == greenhall);
+        // Greenhall's J_max = 100: below it the phase is averaged over tau0 (F = m).
+        const double expected =
+            m * (d + 1) <= 100 ? discrete_edf(statistic, alpha, m, N) : greenhall;
+        CHECK(equivalent_dof(statistic, alpha, m, N, EdfModel::discrete) == expected);
+      }
+    }
+  }
+  CHECK(equivalent_dof(Statistic::totdev, 0, 4, 1000, EdfModel::discrete) ==
+        equivalent_dof(Statistic::totdev, 0, 4, 1000));
+}

@@ -50,6 +50,10 @@ constexpr double kStationaryDelta = 0.25;
 /// white FM, the type for which the simple EDF rules of thumb were derived.
 constexpr int kAssumedAlpha = 0;
 
+/// Greenhall's J_max: while m (d + 1) <= 100 his unmodified-variance model averages the phase
+/// over tau0 (F = m), which is where it departs from discrete-time noise (EdfModel::discrete).
+constexpr std::int64_t kGreenhallAveragedPhaseSpan = 100;
+
 int difference_order(Statistic statistic) {
   return (statistic == Statistic::hdev || statistic == Statistic::ohdev) ? 3 : 2;
 }
@@ -265,6 +269,14 @@ double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
     case Statistic::totdev: return totdev_edf(alpha, m, n_phase_points);
   }
   return kNaN;
+}
+
+double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
+                      std::int64_t n_phase_points, EdfModel model) {
+  if (model == EdfModel::discrete && statistic != Statistic::totdev &&
+      m * (difference_order(statistic) + 1) <= kGreenhallAveragedPhaseSpan)
+    return discrete_edf(statistic, alpha, m, n_phase_points);
+  return equivalent_dof(statistic, alpha, m, n_phase_points);
 }
 
 Interval chi_squared_interval(double dev, double edf, double confidence) {

@@ -68,6 +68,21 @@ double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
 /// on the sampling bandwidth); white PM identical (tests/test_edf_exact.cpp).
 double discrete_edf(Statistic statistic, int alpha, std::int64_t m, std::int64_t n_phase_points);
 
+/// EDF model for equivalent_dof.
+enum class EdfModel {
+  /// Greenhall & Riley 2003 throughout, as Stable32 prints it (the default).
+  greenhall,
+  /// discrete_edf while m (d + 1) <= 100, the range where Greenhall models each phase sample as
+  /// averaged over tau0 (there discrete_edf costs at most ~2e4 lags); Greenhall beyond, where it
+  /// samples the phase and agrees with discrete_edf within 1 % except for flicker PM.
+  discrete,
+};
+
+/// equivalent_dof with a choice of model; EdfModel::greenhall gives equivalent_dof(statistic,
+/// alpha, m, n_phase_points). TOTDEV always uses SP 1065 Table 7.
+double equivalent_dof(Statistic statistic, int alpha, std::int64_t m, std::int64_t n_phase_points,
+                      EdfModel model);
+
 /// Chi-squared confidence bounds for a deviation `dev` with `edf` degrees of freedom at two-sided
 /// confidence `confidence` (e.g. 0.683): sigma^2 edf / chi2_{(1+p)/2}(edf) and
 /// sigma^2 edf / chi2_{(1-p)/2}(edf) (SP 1065 eq. 45), returned as deviations.
