@@ -15,6 +15,12 @@
 // Per-sample PSDs for unit parameters (s = sin(pi f), THEORY.md sections 2 and 6):
 //   Q: 4 s^2 / tau0^2 (y = (e_k - e_{k-1}) / tau0, var e = Q^2)   N: 1 / tau0
 //   B: 1 / (2 |s|) (Kasdin, untruncated)   K: tau0 / (4 s^2)   GM: (1-phi^2)/(1 - 2 phi cos w + phi^2)
+// Quantization is the one term modelled as non-Gaussian: the phase error e of a rounding
+// quantizer is uniform (THEORY.md section 6), with fourth cumulant kappa4 = -1.2 Q^4, which adds
+//   kappa4 / (4 n_a n_b m_a^2 m_b^2 tau0^4) sum_i F_a(i) F_b(i)
+// to Cov(s2_a, s2_b) (F_m(i): the sum over the second differences at m of their squared
+// coefficient on e_i, kurtosis_overlap). It lowers the variance of the quantization-dominated
+// estimates to ~0.7 of the Gaussian value, as measured on the simulator's quantizer.
 // S Phi is a trigonometric polynomial for Q, N and K (c has compact support |L| < m_a + m_b + 1),
 // so its P-point inverse DFT is exact once P > 2 (m_a + m_b + 1); flicker and Gauss-Markov
 // decay and are aliased by less than their tail beyond P/2.
@@ -42,6 +48,9 @@ constexpr double kPi = std::numbers::pi;
 /// separately; the Monte Carlo test in tests/test_fit.cpp checks variances to 25 %).
 constexpr std::int64_t kLagFactor = 8;
 constexpr std::int64_t kMinFft = 256;
+/// Excess kurtosis of a uniform rounding error (IEEE quantization, Q = step / sqrt(12)):
+/// E e^4 / (E e^2)^2 - 3 = 9/5 - 3.
+constexpr double kUniformExcessKurtosis = -1.2;
 /// Most layouts a process keeps (a bench uses a handful).
 constexpr std::size_t kCacheSize = 16;
 
@@ -80,6 +89,29 @@ struct FftBuffers {
   FftBuffers(const FftBuffers&) = delete;
   FftBuffers& operator=(const FftBuffers&) = delete;
 };
+
+/// sum_i F_a(i) F_b(i) with F_m(i) = sum_k g_k(i)^2 over the n = N - 2m second differences
+/// of the phase error e at factor m (g_k = 1, -2, 1 at i = k, k + m, k + 2m):
+/// F_m(i) = [0 <= i < n] + 4 [m <= i < m + n] + [2m <= i < N]. Piecewise constant, so summed
+/// over the segments between the breakpoints.
+double kurtosis_overlap(std::int64_t ma, std::int64_t mb, std::int64_t big_n) {
+  const auto f = [big_n](std::int64_t m, std::int64_t i) {
+    const std::int64_t n = big_n - 2 * m;
+    return (i < n ? 1.0 : 0.0) + (i >= m && i < m + n ? 4.0 : 0.0) + (i >= 2 * m ? 1.0 : 0.0);
+  };
+  std::vector<std::int64_t> cuts{0, big_n};
+  for (const std::int64_t m : {ma, mb}) {
+    const std::int64_t n = big_n - 2 * m;
+    for (const std::int64_t c : {n, m, m + n, 2 * m}) cuts.push_back(c);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double sum = 0;
+  for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
+    if (cuts[j + 1] <= cuts[j]) continue;
+    sum += static_cast<double>(cuts[j + 1] - cuts[j]) * f(ma, cuts[j]) * f(mb, cuts[j]);
+  }
+  return sum;
+}
 
 }  // namespace
 
@@ -215,6 +247,17 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
         h(kRamp, stochastic[t]) = ramp;
         h(stochastic[t], kRamp) = ramp;
       }
+    }
+  }
+  // Quantization's fourth cumulant (uniform rounding error, see the file comment).
+  for (std::size_t b = 0; b < taus; ++b) {
+    for (std::size_t a = 0; a <= b; ++a) {
+      const double ma = static_cast<double>(basis.m[a]), mb = static_cast<double>(basis.m[b]);
+      const double na = static_cast<double>(n_phase_points - 2 * basis.m[a]);
+      const double nb = static_cast<double>(n_phase_points - 2 * basis.m[b]);
+      const double s = kurtosis_overlap(basis.m[a], basis.m[b], n_phase_points);
+      basis.h[basis.pair_index(a, b)](0, 0) +=
+          kUniformExcessKurtosis * s / (4 * na * nb * ma * ma * mb * mb * std::pow(tau0_s, 4));
     }
   }
   return basis;
