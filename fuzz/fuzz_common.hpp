@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
@@ -19,10 +20,23 @@ inline const std::string& scratch_dir() {
   return dir;
 }
 
+/// Unlinks the scratch files when the fuzzer exits normally (-max_total_time, -runs); a crash
+/// leaves them, beside the crash artifact.
+struct ScratchFiles {
+  std::vector<std::string> paths;
+  ~ScratchFiles() {
+    for (const auto& p : paths) unlink(p.c_str());
+  }
+};
+
 /// A scratch file named after the process with `suffix` (e.g. ".dat", ".bag"), rewritten for
-/// every input.
+/// every input and removed at exit.
 inline std::string scratch_file(const char* suffix) {
-  return scratch_dir() + "/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + suffix;
+  static ScratchFiles files;
+  std::string path =
+      scratch_dir() + "/sigmatau_fuzz_" + std::to_string(static_cast<long>(getpid())) + suffix;
+  files.paths.push_back(path);
+  return path;
 }
 
 /// The scratch file of the text and binary harnesses.
