@@ -38,7 +38,15 @@ struct AdevArguments {
   int density = kDefaultStreamDensity;
   std::string memory = "4GiB";
   bool partial = false;
+  std::string edf = "greenhall";
 };
+
+/// --edf greenhall|discrete.
+EdfModel parse_edf_model(const std::string& name) {
+  if (name == "greenhall") return EdfModel::greenhall;
+  if (name == "discrete") return EdfModel::discrete;
+  throw Error("--edf must be greenhall or discrete, got \"" + name + "\"");
+}
 
 /// Bytes from "1GiB", "512MiB", "800M", "2G", "123456" (K/M/G/T decimal, Ki/Mi/Gi/Ti binary,
 /// an optional trailing B). Throws Error naming the option otherwise.
@@ -97,6 +105,7 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   Progress progress;
   OutOfCoreSettings settings;
   settings.threads = args.threads;
+  settings.edf_model = parse_edf_model(args.edf);
   settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
   OutOfCoreResult result = compute_allan_curves_out_of_core(
       options, loaded.kind, loaded.to_si,
@@ -219,10 +228,11 @@ nlohmann::json json_number(double v) {
 
 std::string render_json(const LoadedChannels& loaded, std::size_t samples, const std::vector<Statistic>& stats,
                         const std::vector<std::vector<AllanCurve>>& curves,
-                        const OutputUnit& unit) {
+                        const OutputUnit& unit, const std::string& edf_model) {
   nlohmann::json doc;
   doc["tool"] = "sigmatau";
   doc["version"] = SIGMATAU_VERSION;
+  doc["edf_model"] = edf_model;
   doc["input"] = {{"path", loaded.log.path},
                   {"rate_hz", loaded.rate_hz},
                   {"samples", samples},
@@ -334,7 +344,8 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
     channels.push_back(segment_series(channel, ranges, loaded.kind, 1.0 / loaded.rate_hz));
     std::vector<double>().swap(channel);
   }
-  return compute_segmented_allan_curves(channels, stats, taus, args.ci, args.threads);
+  return compute_segmented_allan_curves(channels, stats, taus, args.ci, args.threads,
+                                        parse_edf_model(args.edf));
 }
 
 void run_adev(const AdevArguments& args) {
@@ -359,6 +370,11 @@ void run_adev(const AdevArguments& args) {
     throw Error("--partial is for --mode stream (exact results need the whole log)");
   }
   const bool stream = args.mode == "stream";
+  const EdfModel edf_model = parse_edf_model(args.edf);
+  if (stream && edf_model != EdfModel::greenhall) {
+    throw Error("--edf discrete is for exact mode; stream mode's strided EDF follows Greenhall's "
+                "algorithm");
+  }
   // Exact (and auto) mode on a file that would not fit --memory: exact out of core (the phase
   // in temporary files, the file read twice). Not for --gaps split/fill with a time column
   // (they need the whole log in memory); pipes cannot be read twice and stay in memory.
@@ -396,14 +412,14 @@ void run_adev(const AdevArguments& args) {
       series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
       std::vector<double>().swap(channel);  // the raw samples are no longer needed
     }
-    curves = compute_allan_curves(series, stats, taus, args.ci, args.threads);
+    curves = compute_allan_curves(series, stats, taus, args.ci, args.threads, edf_model);
   }
   const OutputUnit unit = output_unit(loaded, args.out_unit);
 
   std::string text;
   if (args.format == "table") text = render_table(loaded, samples, stats, curves, unit);
   if (args.format == "csv") text = render_csv(loaded, stats, curves, unit);
-  if (args.format == "json") text = render_json(loaded, samples, stats, curves, unit);
+  if (args.format == "json") text = render_json(loaded, samples, stats, curves, unit, args.edf);
   if (args.output.empty()) {
     std::cout << text;
   } else {
@@ -471,6 +487,11 @@ void add_adev_command(CLI::App& app) {
                       "stream mode: start points per tau K (stride max(1, m/K) samples)")
       ->capture_default_str();
   command->add_option("--memory", args->memory, "memory for exact mode, e.g. 1GiB: larger files are computed out of core")
+      ->capture_default_str();
+  command->add_option("--edf", args->edf,
+                      "EDF of the intervals: greenhall (Greenhall & Riley's algorithm, the bounds "
+                      "Stable32 prints) or discrete (exact for discrete power-law noise such as "
+                      "independent rate samples; up to 25 % apart at the smallest taus)")
       ->capture_default_str();
   command->add_flag("--partial",
                     args->partial, "stream mode: on a read error, still write the results for "

@@ -45,7 +45,7 @@ double totvar_bias(int alpha, std::int64_t m, const PhaseSeries& series) {
 namespace detail {
 
 AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
-                                const TauSpec& taus, double confidence_level,
+                                const TauSpec& taus, double confidence_level, EdfModel edf_model,
                                 const std::function<NoiseIdentification(std::int64_t)>& identify) {
   if (!(confidence_level > 0.0 && confidence_level < 1.0)) {
     throw Error("confidence level must be between 0 and 1 (e.g. 0.683), got " +
@@ -74,7 +74,8 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
     // Stable32 counts in data points (M for rate input); Greenhall's algorithm uses N phase points.
     const std::int64_t edf_points =
         statistic == Statistic::totdev ? record_points(series) : series.size();
-    confidence.edf = equivalent_dof(statistic, confidence.noise.alpha, point.m, edf_points);
+    confidence.edf =
+        equivalent_dof(statistic, confidence.noise.alpha, point.m, edf_points, edf_model);
     confidence.interval = chi_squared_interval(point.dev, confidence.edf, confidence_level);
     curve.points.push_back({point, confidence});
   }
@@ -84,15 +85,15 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
 }  // namespace detail
 
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
-                               const TauSpec& taus, double confidence_level) {
+                               const TauSpec& taus, double confidence_level, EdfModel edf_model) {
   return detail::assemble_allan_curve(
-      series, statistic, taus, confidence_level,
+      series, statistic, taus, confidence_level, edf_model,
       [&](std::int64_t m) { return identify_noise(series, statistic, m); });
 }
 
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const std::vector<PhaseSeries>& channels, const std::vector<Statistic>& statistics,
-    const TauSpec& taus, double confidence_level, unsigned threads) {
+    const TauSpec& taus, double confidence_level, unsigned threads, EdfModel edf_model) {
   std::vector<std::vector<AllanCurve>> result(channels.size(),
                                               std::vector<AllanCurve>(statistics.size()));
   // Work items are (channel, statistic) pairs so two channels still keep two cores busy.
@@ -100,7 +101,8 @@ std::vector<std::vector<AllanCurve>> compute_allan_curves(
       channels.size() * statistics.size(), threads, [&](std::size_t i) {
         const std::size_t c = i / statistics.size();
         const std::size_t s = i % statistics.size();
-        result[c][s] = compute_allan_curve(channels[c], statistics[s], taus, confidence_level);
+        result[c][s] =
+            compute_allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model);
       });
   return result;
 }

@@ -42,9 +42,9 @@ NoiseIdentification identify_noise_bounded(const PhaseSeries& series, Statistic 
 
 AllanCurve compute_allan_curve_bounded(const PhaseSeries& series, Statistic statistic,
                                        const TauSpec& taus, double confidence_level,
-                                       const PhaseStorage& storage) {
+                                       const PhaseStorage& storage, EdfModel edf_model) {
   return detail::assemble_allan_curve(
-      series, statistic, taus, confidence_level,
+      series, statistic, taus, confidence_level, edf_model,
       [&](std::int64_t m) { return identify_noise_bounded(series, statistic, m, storage); });
 }
 
@@ -139,7 +139,8 @@ OutOfCoreResult compute_allan_curves_out_of_core(
           const std::size_t c = i / statistics.size();
           const std::size_t s = i % statistics.size();
           AllanCurve curve = compute_allan_curve_bounded(series[c], statistics[s], taus,
-                                                         confidence_level, settings.storage);
+                                                         confidence_level, settings.storage,
+                                                         settings.edf_model);
           std::lock_guard lock(result_mutex);
           auto& slot = result.curves[group_begin + c];
           if (slot.size() < statistics.size()) slot.resize(statistics.size());

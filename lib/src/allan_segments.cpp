@@ -143,7 +143,7 @@ std::vector<DeviationPoint> compute_segmented_deviation(std::span<const PhaseSer
 
 AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
                                          Statistic statistic, const TauSpec& taus,
-                                         double confidence_level) {
+                                         double confidence_level, EdfModel edf_model) {
   if (!(confidence_level > 0.0 && confidence_level < 1.0)) {
     throw Error("confidence level must be between 0 and 1 (e.g. 0.683), got " +
                 std::to_string(confidence_level));
@@ -193,7 +193,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
       if (points[k][i].n_terms <= 0) continue;
       const std::int64_t edf_points =
           statistic == Statistic::totdev ? record_points(segments[k]) : segments[k].size();
-      const double e = equivalent_dof(statistic, confidence.noise.alpha, m, edf_points);
+      const double e = equivalent_dof(statistic, confidence.noise.alpha, m, edf_points, edf_model);
       if (std::isfinite(e)) {
         edf += e;
         any_edf = true;
@@ -209,7 +209,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
 std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
     const std::vector<std::vector<PhaseSeries>>& channels,
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
-    unsigned threads) {
+    unsigned threads, EdfModel edf_model) {
   std::vector<std::vector<AllanCurve>> result(channels.size(),
                                               std::vector<AllanCurve>(statistics.size()));
   detail::for_each_item_parallel(
@@ -217,7 +217,8 @@ std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
         const std::size_t c = i / statistics.size();
         const std::size_t s = i % statistics.size();
         result[c][s] =
-            compute_segmented_allan_curve(channels[c], statistics[s], taus, confidence_level);
+            compute_segmented_allan_curve(channels[c], statistics[s], taus, confidence_level,
+                                          edf_model);
       });
   return result;
 }

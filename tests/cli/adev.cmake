@@ -38,3 +38,24 @@ sigmatau_cli_test(NAME cli_adev_bad_ci EXIT 2 STDERR "confidence"
 sigmatau_cli_test(NAME cli_adev_missing_file EXIT 2 STDERR "no_such_file.csv"
   ARGS adev ${out_dir}/no_such_file.csv --rate 100)
 sigmatau_cli_test(NAME cli_adev_usage EXIT 2 ARGS adev)
+
+# --edf discrete: at m = 1 on white FM (independent rate samples) the exact EDF of the
+# n = N - 2 = 1999 overlapping terms is 2 n^2 / (3 n - 1) = 1332.9 (first differences are MA(1)
+# with lag-1 correlation -1/2), printed "1333"; Greenhall's default models the phase as averaged
+# over tau0 and gives about 18/23 of the samples instead (tests/test_edf_exact.cpp).
+sigmatau_cli_test(NAME cli_adev_edf_discrete EXIT 0
+  STDOUT "0\\.1 +1 +1999 +0 +1333 "
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --taus 0.1
+       --edf discrete)
+sigmatau_cli_test(NAME cli_adev_edf_json EXIT 0 STDOUT "\"edf_model\": \"discrete\""
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --taus 0.1
+       --edf discrete --format json)
+sigmatau_cli_test(NAME cli_adev_edf_unknown EXIT 2 STDERR "--edf must be greenhall or discrete"
+  ARGS adev ${example} --time-column t --edf exact)
+sigmatau_cli_test(NAME cli_adev_edf_stream EXIT 2 STDERR "--edf discrete is for exact mode"
+  ARGS adev ${example} --time-column t --edf discrete --mode stream)
+# The model reaches the out-of-core path (--memory 1K forces it) and the gap-split path.
+sigmatau_cli_test(NAME cli_adev_edf_discrete_out_of_core EXIT 0
+  STDOUT "0\\.1 +1 +1999 +0 +1333 "
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --taus 0.1
+       --edf discrete --memory 1K)

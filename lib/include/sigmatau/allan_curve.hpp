@@ -46,12 +46,14 @@ struct AllanCurve {
 /// identified at that tau, and once few averages remain the previous tau's noise type is kept
 /// (NoiseIdentification::Method::previous_tau).
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
-                               const TauSpec& taus, double confidence_level);
+                               const TauSpec& taus, double confidence_level,
+                               EdfModel edf_model = EdfModel::greenhall);
 
 /// Several statistics for several channels, channels spread over `threads` worker threads
 /// (0: one per hardware core). Result: [channel][statistic], in the order given.
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const std::vector<PhaseSeries>& channels, const std::vector<Statistic>& statistics,
-    const TauSpec& taus, double confidence_level, unsigned threads = 0);
+    const TauSpec& taus, double confidence_level, unsigned threads = 0,
+    EdfModel edf_model = EdfModel::greenhall);
 
 }  // namespace sigmatau

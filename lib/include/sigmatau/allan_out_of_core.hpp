@@ -30,7 +30,8 @@ namespace sigmatau {
 /// when storage.spill) instead of anonymous memory. Identical results.
 AllanCurve compute_allan_curve_bounded(const PhaseSeries& series, Statistic statistic,
                                        const TauSpec& taus, double confidence_level,
-                                       const PhaseStorage& storage);
+                                       const PhaseStorage& storage,
+                                       EdfModel edf_model = EdfModel::greenhall);
 
 /// identify_noise with the averaged (or decimated) series kept in `storage` when it is longer
 /// than a few MiB. Identical results.
@@ -47,6 +48,7 @@ inline PhaseStorage spilled_storage() {
 struct OutOfCoreSettings {
   PhaseStorage storage = spilled_storage();  ///< where the phase goes (spilled for out of core)
   unsigned threads = 0;  ///< channels computed at a time (0: one per core)
+  EdfModel edf_model = EdfModel::greenhall;  ///< EDF of the intervals (see equivalent_dof)
   /// Called once per read pass with (bytes read, total bytes or -1), after each block.
   std::function<void(std::int64_t, std::int64_t)> progress;
 };

@@ -74,7 +74,8 @@ std::vector<DeviationPoint> compute_segmented_deviation(std::span<const PhaseSer
 /// compute_segmented_deviation, and when the longest segment is too short for any tau.
 AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
                                          Statistic statistic, const TauSpec& taus,
-                                         double confidence_level);
+                                         double confidence_level,
+                                         EdfModel edf_model = EdfModel::greenhall);
 
 /// Several statistics for several channels, each channel given as its segments; (channel,
 /// statistic) pairs are spread over `threads` worker threads (0: one per hardware core).
@@ -82,7 +83,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
 std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
     const std::vector<std::vector<PhaseSeries>>& channels,
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
-    unsigned threads = 0);
+    unsigned threads = 0, EdfModel edf_model = EdfModel::greenhall);
 
 /// Welch PSD over several contiguous stretches of one channel (rate samples at rate_hz): every
 /// stretch at least one Welch segment long is averaged on its own, and the stretches' PSDs are
