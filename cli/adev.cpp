@@ -82,13 +82,21 @@ constexpr std::int64_t kExactBytesPerSample = 32;
 
 /// Values (samples x channels) a seekable input file holds, estimated from its size: exact for
 /// raw binary, at least bytes / 4 for text (a value and its delimiter take >= 4 bytes in
-/// practice), -1 for stdin or when the size is unknown. Gzip files are counted as stored.
+/// practice), bytes / kBagBytesPerValue for a ROS bag, -1 for stdin, a rosbag2 folder or when the
+/// size is unknown. Gzip files are counted as stored.
+/// Bag bytes per Imu value assumed: an uncompressed sensor_msgs/Imu message takes 300-400 bytes
+/// with its record header (covariances included) for six values, about 60 per value; 16 leaves
+/// room for chunks compressed up to ~4x (lz4 and zstd do 2-3x on Imu messages), so a bag goes
+/// out of core early rather than overrunning --memory (out of core costs a second read pass).
+constexpr std::int64_t kBagBytesPerValue = 16;
+
 std::int64_t estimated_values(const LogArguments& log) {
   if (log.input == "-") return -1;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(log.input, ec)) return -1;
   const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(log.input, ec));
   if (ec) return -1;
+  if (is_bag_path(log.input)) return bytes / kBagBytesPerValue;
   if (log.binary.empty()) return bytes / 4;
   const std::int64_t size = log.binary == "i16" ? 2 : (log.binary == "f64" ? 8 : 4);
   return bytes / size;
@@ -117,6 +125,7 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   loaded.log.path = options.path;
   loaded.log.channel_names = std::move(result.channel_names);
   loaded.log.timing = std::move(result.timing);
+  note_reading(args.log, options, loaded.log.timing);
   loaded.rate_hz = result.rate_hz;
   samples = static_cast<std::size_t>(result.samples);
   return std::move(result.curves);
@@ -321,6 +330,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   }
   progress.finish();
   loaded.log.timing = reader.timing();
+  note_reading(args.log, options, loaded.log.timing);
   if (streams.empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
                      "no samples: the input holds no data rows");

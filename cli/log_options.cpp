@@ -114,6 +114,8 @@ LogOptions log_options_from(const LogArguments& args) {
   return options;
 }
 
+namespace {
+
 void note_topic_choice(const std::string& input, const TimingReport& timing) {
   if (timing.bag_topics.empty()) return;
   std::string list;
@@ -142,6 +144,20 @@ void note_reordering(const std::string& input, const TimingReport& timing,
                static_cast<long long>(reorder_window));
 }
 
+}  // namespace
+
+void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing) {
+  note_topic_choice(args.input, timing);
+  note_reordering(args.input, timing, options.reorder_window);
+  if (timing.rows_skipped_nonfinite > 0) {
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite "
+                 "skip)\n",
+                 args.input.c_str(), static_cast<long long>(timing.rows_skipped_nonfinite),
+                 timing.rows_skipped_nonfinite == 1 ? "" : "s");
+  }
+}
+
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.kind = parse_data_kind(args.kind);
   loaded.unit = args.unit;
@@ -162,13 +178,7 @@ LoadedChannels load_channels(const LogArguments& args) {
   });
   progress.finish();
   Log& log = loaded.log;
-  note_topic_choice(args.input, log.timing);
-  note_reordering(args.input, log.timing, options.reorder_window);
-  if (log.timing.rows_skipped_nonfinite > 0) {
-    std::fprintf(stderr, "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite skip)\n",
-                 args.input.c_str(), static_cast<long long>(log.timing.rows_skipped_nonfinite),
-                 log.timing.rows_skipped_nonfinite == 1 ? "" : "s");
-  }
+  note_reading(args, options, log.timing);
   if (options.gaps == GapPolicy::fill) fill_gaps(log);
   if (log.channels.empty() || log.channels[0].empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,

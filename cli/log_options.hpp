@@ -51,15 +51,13 @@ LoadedChannels load_channels(const LogArguments& args);
 /// The reader options of the arguments (validated as load_channels does).
 LogOptions log_options_from(const LogArguments& args);
 
-/// ROS bags read without --topic: prints a note on stderr naming the topic picked (the only
-/// sensor_msgs/Imu one) and listing the bag's topics with types and counts. Nothing otherwise.
-void note_topic_choice(const std::string& input, const TimingReport& timing);
-
-/// ROS bags: prints a note on stderr when messages arrived out of stamp order and were sorted
-/// within the reorder window (how many, the largest lateness [s], the window [messages]).
-/// Prints nothing when there was no reordering.
-void note_reordering(const std::string& input, const TimingReport& timing,
-                     std::int64_t reorder_window);
+/// The notes on stderr about how the log was read, from its timing report (nothing when there
+/// is nothing to say): for a ROS bag read without --topic, the topic picked (the only
+/// sensor_msgs/Imu one) and the bag's topics with types and counts; for a bag whose messages
+/// arrived out of stamp order, how many were sorted within the reorder window and the largest
+/// lateness [s]; with --nonfinite skip, how many rows were dropped. Every path that reads a log
+/// (load_channels, adev's stream and out-of-core paths) calls it once.
+void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing);
 
 /// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded);
