@@ -8,9 +8,8 @@
 /// sampled_avar), linear in theta = (Q^2, N^2, B^2, K^2, R^2) >= 0, and solved by non-negative
 /// generalised least squares whose weight is the inverse of the exact covariance of the OAVAR
 /// estimates across taus under the fitted model (oavar_covariance), iterated with the model.
-/// Candidate subsets of terms, each fitted with its own iterated weights, are compared by
-/// chi2 + 4 k (k kept terms; a spurious term enters ~2.3 % of curves, fit_joint.cpp); terms
-/// not kept are reported as one-sided upper bounds from the variance under the bound.
+/// Candidate subsets of terms are compared by BIC (one weight matrix, the largest model's);
+/// terms not kept are reported as one-sided upper bounds from the variance under the bound.
 ///
 /// References:
 ///  - IEEE Std 952-1997 Annex C; IEEE Std 1293-1998 (read-off rules; THEORY.md section 2).
@@ -19,8 +18,7 @@
 ///  - S. Guerrier, R. Molinari, Y. Stebler, "Theoretical limitations of Allan variance-based
 ///    regression for time series model estimation", IEEE SPL 23(5) (2016) 597.
 ///  - C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems", 1974, ch. 23 (NNLS).
-///  - G. Schwarz, "Estimating the dimension of a model", Ann. Stat. 6 (1978) 461 (BIC, the
-///    penalised-chi2 form of the criterion; the penalty here is fixed, fit_joint.cpp says why).
+///  - G. Schwarz, "Estimating the dimension of a model", Ann. Stat. 6 (1978) 461 (BIC).
 ///  - S. G. Self, K.-Y. Liang, "Asymptotic properties of maximum likelihood estimators and
 ///    likelihood ratio tests under nonstandard conditions", JASA 82 (1987) 605 (a parameter on
 ///    its boundary: the chi-bar-squared 50:50 mixture behind the penalty).
@@ -69,7 +67,7 @@ struct CurveSource {
 
 struct FitOptions {
   FitMethod method = FitMethod::joint;
-  /// Forced model (--terms); empty: the model is selected (chi2 + 4 k) among all subsets of
+  /// Forced model (--terms); empty: the model is selected by BIC among all subsets of
   /// `candidates`.
   std::vector<NoiseTerm> terms;
   /// Terms model selection may use (default all five of kFitTerms).
@@ -100,8 +98,7 @@ struct ChannelFit {
   FitMethod method = FitMethod::joint;    ///< joint or slopes
   std::vector<NoiseTerm> model_terms;     ///< in kFitTerms order
   std::vector<ParameterEstimate> parameters;  ///< one per candidate term, kFitTerms order
-  /// Joint fit: generalised chi-squared of the final model and its selection criterion
-  /// (chi2 + 4 k, in the field named bic for the JSON output's sake); iterations of the
+  /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
   /// weight loop. Slopes: NaN, NaN, 0.
   double chi_squared = 0;
   double bic = 0;
