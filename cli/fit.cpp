@@ -311,7 +311,7 @@ void add_fit_command(CLI::App& app) {
   add_log_options(*command, args->log);
   command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
   command->add_option("--terms", args->terms,
-                      "force the model, e.g. N,B,K (default: chosen by chi2 + 4 per term among Q,N,B,K,R)");
+                      "force the model, e.g. N,B,K (default: chosen by BIC among Q,N,B,K,R)");
   command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | json")->capture_default_str();
