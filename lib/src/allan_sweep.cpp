@@ -22,6 +22,7 @@
 #include "allan_dd.hpp"
 #include "allan_sums.hpp"
 #include "allan_sweep_kernels.hpp"
+#include "phase_spill.hpp"
 #include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 
@@ -60,6 +61,10 @@ static_assert(kSweepBlock % kBaseBlock == 0 && kBaseBlock % kTermBlock == 0,
 /// sums of the factor itself by a factor kBaseBlock / m, so small factors read the double-double
 /// phase.
 constexpr std::int64_t kCompactMin = kBaseBlock;
+/// With spilled (file-backed) storage, the loops check the process's resident budget after about
+/// this many bytes of phase read or written (enforce_spill_budget), so that a starved watchdog
+/// thread cannot let the resident set grow with the length of the log.
+constexpr std::int64_t kBudgetCheckBytes = std::int64_t{8} << 20;
 
 SIGMATAU_SWEEP_CLONES double sum_squares_d2(const double* h, const double* l, std::int64_t m,
                                             std::int64_t n0, std::int64_t len) {
@@ -211,13 +216,15 @@ bool full_block(const FactorGroup& group, std::span<const std::int64_t> counts, 
 /// factors in the inner one, so the few kilobytes of phase a term block reads stay in cache for
 /// every factor, and octave runs go through the fused kernel. Each factor's block totals are
 /// added in ascending order, as in a sweep of that factor alone.
-void small_factor_sweep(const double* h, const double* l, int order,
+void small_factor_sweep(const double* h, const double* l, bool spilled, int order,
                         std::span<const std::int64_t> m, std::span<const std::int64_t> counts,
                         std::span<DoubleDouble> acc) {
   if (m.empty()) return;
   const std::vector<FactorGroup> groups = octave_groups(m, false, kFusedMax);
   const std::int64_t max_count = *std::max_element(counts.begin(), counts.end());
+  constexpr std::int64_t kCheckEvery = kBudgetCheckBytes / (16 * kTermBlock);  // term blocks
   for (std::int64_t b0 = 0; b0 < max_count; b0 += kTermBlock) {
+    if (spilled && (b0 / kTermBlock) % kCheckEvery == 0) enforce_spill_budget();
     for (const FactorGroup& group : groups) {
       if (group.size > 1 && full_block(group, counts, b0)) {
         double out[kFusedMax];
@@ -243,6 +250,7 @@ void compact_sweep(const CompactPhase& phase, int order, std::span<const std::in
   std::vector<std::int64_t> cuts;
   const std::int64_t max_count = *std::max_element(counts.begin(), counts.end());
   for (std::int64_t n0 = 0; n0 < max_count; n0 += kSweepBlock) {
+    if (phase.offset.spilled()) enforce_spill_budget();  // ~15 segments of 512 KiB a block
     for (std::size_t t = 0; t < m.size(); ++t) {
       const std::int64_t end = std::min(n0 + kSweepBlock, counts[t]);
       for (std::int64_t b0 = n0; b0 < end; b0 += kTermBlock) {
@@ -303,8 +311,12 @@ void chain_sweep(const CompactPhase& phase, int order, std::span<const std::int6
   const std::int64_t max_count = *std::max_element(counts.begin(), counts.end());
   // The farthest point of a step, relative to n0: the last point of the largest factor.
   const std::int64_t reach = order * m[G - 1];
+  const bool spilled = phase.offset.spilled();
+  constexpr std::int64_t kCheckEvery = kBudgetCheckBytes / (8 * kTermBlock);  // steps
+  std::int64_t steps = 0;
   for (std::int64_t r0 = 0; r0 < m0; r0 += kTermBlock) {
     for (std::int64_t n0 = r0; n0 < max_count; n0 += m0) {
+      if (spilled && steps++ % kCheckEvery == 0) enforce_spill_budget();  // a segment a step
       double c[kFusedMax] = {};
       for (std::size_t i = 0; i < G; ++i) {
         if (n0 >= counts[i]) continue;
@@ -350,7 +362,9 @@ CompactPhase::CompactPhase(const PhaseSeries& series)
   const double* l = series.lo().data();
   const std::int64_t N = series.size();
   base.resize(static_cast<std::size_t>((N + kBaseBlock - 1) / kBaseBlock));
+  constexpr std::int64_t kCheckEvery = kBudgetCheckBytes / (24 * kBaseBlock);  // base blocks
   for (std::int64_t b = 0; b * kBaseBlock < N; ++b) {
+    if (offset.spilled() && b % kCheckEvery == 0) enforce_spill_budget();
     const std::int64_t k0 = b * kBaseBlock;
     base[static_cast<std::size_t>(b)] = {h[k0], l[k0]};
     split_block(h + k0, l + k0, std::min(kBaseBlock, N - k0), h[k0], l[k0],
@@ -383,8 +397,8 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
     (m[t] < kCompactMin ? small_counts : large_counts).push_back(counts[t]);
   }
   std::vector<DoubleDouble> small_acc(small_m.size()), large_acc(large_m.size());
-  small_factor_sweep(series.hi().data(), series.lo().data(), order, small_m, small_counts,
-                     small_acc);
+  small_factor_sweep(series.hi().data(), series.lo().data(), series.spilled(), order, small_m,
+                     small_counts, small_acc);
   if (!large_m.empty()) {
     const std::shared_ptr<const CompactPhase> phase = compact_phase(series);
     // Octave runs (multiples of kBaseBlock) by chains; every other factor by blocks.

@@ -236,6 +236,9 @@ void PhaseSeriesBuilder::append(std::span<const double> values) {
     st.prefix.add(values, hi, lo);
   }
   st.appended += n;
+  // File-backed storage: keep the resident set within its budget even if the watchdog thread
+  // is starved (the writes here can outrun it by gigabytes on a loaded machine).
+  if (st.store->hi.spilled()) detail::enforce_spill_budget();
 }
 
 PhaseSeries PhaseSeriesBuilder::finish(double tau0_s) {

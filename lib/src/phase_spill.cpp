@@ -78,16 +78,29 @@ class PageReleaser {
   };
   static constexpr std::chrono::milliseconds kPeriod{5};
 
+ public:
+  /// The watchdog's check, now, from the calling thread.
+  void check_now() {
+    std::lock_guard lock(mutex_);
+    release_if_over_budget();
+  }
+
+ private:
+  void release_if_over_budget() {
+    if (mappings_.empty()) return;
+    const std::int64_t resident = file_resident_bytes();
+    if (resident > budget_) {
+      // Under the lock: remove() cannot unmap a buffer while it is being released.
+      for (const Mapping& m : mappings_) madvise(m.address, m.bytes, MADV_DONTNEED);
+    }
+  }
+
   void run() {
     std::unique_lock lock(mutex_);
     while (!stop_) {
       wake_.wait_for(lock, kPeriod, [this] { return stop_; });
       if (stop_) break;
-      const std::int64_t resident = file_resident_bytes();
-      if (resident > budget_) {
-        // Under the lock: remove() cannot unmap a buffer while it is being released.
-        for (const Mapping& m : mappings_) madvise(m.address, m.bytes, MADV_DONTNEED);
-      }
+      release_if_over_budget();
     }
   }
 
@@ -135,6 +148,12 @@ int open_spill_file(const std::string& dir, std::size_t bytes) {
 constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
 
 }  // namespace
+
+void enforce_spill_budget() {
+#if defined(__linux__)
+  PageReleaser::instance().check_now();
+#endif
+}
 
 std::int64_t file_resident_bytes() {
 #if defined(__linux__)

@@ -45,6 +45,12 @@ class DoubleBuffer {
   bool spilled_ = false;
 };
 
+/// Does the watchdog's check now, in the calling thread: drops the mappings of every spilled
+/// buffer if the file-backed resident set exceeds the budget. Loops that stream through spilled
+/// buffers call it every few MiB, so the resident set stays bounded even when the watchdog
+/// thread is not scheduled for a while (a loaded machine). Costs one read of /proc/self/statm.
+void enforce_spill_budget();
+
 /// File-backed resident bytes of this process (RssFile + RssShmem from /proc/self/statm), or -1
 /// where that is not available.
 std::int64_t file_resident_bytes();
