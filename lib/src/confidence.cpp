@@ -34,6 +34,7 @@
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 #include "noise_identification.hpp"
+#include "phase_spill.hpp"
 
 namespace sigmatau {
 namespace {
@@ -233,12 +234,22 @@ std::int64_t averaged_series_points(const PhaseSeries& series, std::int64_t m) {
 
 void fill_averaged_series(const PhaseSeries& series, std::int64_t m, double* out) {
   const std::int64_t N = series.size();
+  // A spilled phase: reading one point in m maps the pages around each point, so the resident
+  // budget is checked synchronously about every 8 MiB of phase spanned (phase_spill.hpp).
+  const std::int64_t check_every =
+      series.spilled() ? std::max<std::int64_t>(1, (std::int64_t{512} << 10) / m) : N + 1;
   if (is_phase_input(series)) {
-    for (std::int64_t k = 0, i = 0; k < N; k += m, ++i) out[i] = series.x(k);
+    for (std::int64_t k = 0, i = 0; k < N; k += m, ++i) {
+      if (i % check_every == 0 && series.spilled()) enforce_spill_budget();
+      out[i] = series.x(k);
+    }
   } else {
     const std::int64_t K = (N - 1) / m;
     const double inv_m = 1.0 / static_cast<double>(m);
-    for (std::int64_t k = 0; k < K; ++k) out[k] = series.window_sum(k * m, m) * inv_m;
+    for (std::int64_t k = 0; k < K; ++k) {
+      if (k % check_every == 0 && series.spilled()) enforce_spill_budget();
+      out[k] = series.window_sum(k * m, m) * inv_m;
+    }
   }
 }
 
