@@ -10,14 +10,9 @@
 #endif
 
 #include "allan_stream_noise.hpp"
+#include "simd_clones.hpp"
 
 #include <limits>
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(SIGMATAU_NO_CLONES)
-#define SIGMATAU_NOISE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define SIGMATAU_NOISE_CLONES
-#endif
 
 namespace sigmatau::detail {
 namespace {
@@ -27,7 +22,7 @@ constexpr std::size_t kLanes = 8;
 /// a[1..len) into the lanes: b = a[i] - shift and p = a[i-1] - shift; element 1 + j of the main
 /// loop goes to lane j mod kLanes, the elements after the last full group of kLanes to lanes
 /// 0, 1, ... (as the scalar loop always did).
-SIGMATAU_NOISE_CLONES void lag1_lanes(const double* a, std::size_t len, double shift,
+SIGMATAU_SIMD_CLONES void lag1_lanes(const double* a, std::size_t len, double shift,
                                       double (&t1)[kLanes], double (&t2)[kLanes],
                                       double (&t12)[kLanes]) {
   // One vector of kLanes doubles per sum (GCC/Clang vector extension, element-wise).
@@ -60,7 +55,7 @@ SIGMATAU_NOISE_CLONES void lag1_lanes(const double* a, std::size_t len, double s
 }
 
 /// out[i] = in[i] - in[i-1] for i in [1, len).
-SIGMATAU_NOISE_CLONES void first_differences(const double* in, std::size_t len, double* out) {
+SIGMATAU_SIMD_CLONES void first_differences(const double* in, std::size_t len, double* out) {
   for (std::size_t i = 1; i < len; ++i) out[i] = in[i] - in[i - 1];
 }
 

@@ -14,12 +14,7 @@
 
 #include "allan_dd.hpp"
 #include "sigmatau/error.hpp"
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(SIGMATAU_NO_CLONES)
-#define SIGMATAU_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SIGMATAU_TARGET_CLONES
-#endif
+#include "simd_clones.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -41,7 +36,7 @@ inline double window(const double* h, const double* l, std::int64_t a, std::int6
 }
 
 /// out[t] = D2(n0 + t) for t < len (not squared): the terms the modified sum runs over.
-SIGMATAU_TARGET_CLONES void fill_d2(const double* h, const double* l, std::int64_t m, std::int64_t n0, std::int64_t len,
+SIGMATAU_AVX2_CLONES void fill_d2(const double* h, const double* l, std::int64_t m, std::int64_t n0, std::int64_t len,
              double* out) {
   const double* h0 = h + n0;
   const double* l0 = l + n0;

@@ -25,12 +25,7 @@
 #include "phase_spill.hpp"
 #include "phase_store.hpp"
 #include "sigmatau/error.hpp"
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(SIGMATAU_NO_CLONES)
-#define SIGMATAU_SWEEP_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define SIGMATAU_SWEEP_CLONES
-#endif
+#include "simd_clones.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -66,16 +61,16 @@ constexpr std::int64_t kCompactMin = kBaseBlock;
 /// thread cannot let the resident set grow with the length of the log.
 constexpr std::int64_t kBudgetCheckBytes = std::int64_t{8} << 20;
 
-SIGMATAU_SWEEP_CLONES double sum_squares_d2(const double* h, const double* l, std::int64_t m,
+SIGMATAU_SIMD_CLONES double sum_squares_d2(const double* h, const double* l, std::int64_t m,
                                             std::int64_t n0, std::int64_t len) {
   return block_sum_squares<2>(h, l, m, n0, len);
 }
-SIGMATAU_SWEEP_CLONES double sum_squares_d3(const double* h, const double* l, std::int64_t m,
+SIGMATAU_SIMD_CLONES double sum_squares_d3(const double* h, const double* l, std::int64_t m,
                                             std::int64_t n0, std::int64_t len) {
   return block_sum_squares<3>(h, l, m, n0, len);
 }
 
-SIGMATAU_SWEEP_CLONES void compact_d2(const double* o0, std::int64_t m, std::int64_t r0,
+SIGMATAU_SIMD_CLONES void compact_d2(const double* o0, std::int64_t m, std::int64_t r0,
                                       std::int64_t r1, double c, double (&acc)[kLanes]) {
   // c == 0 (all three points in one base block, the common case for m much smaller than the
   // block) saves one addition per term; adding an exact 0 would not change any term.
@@ -85,7 +80,7 @@ SIGMATAU_SWEEP_CLONES void compact_d2(const double* o0, std::int64_t m, std::int
     compact_segment<2, true>(o0, m, r0, r1, c, acc);
   }
 }
-SIGMATAU_SWEEP_CLONES void compact_d3(const double* o0, std::int64_t m, std::int64_t r0,
+SIGMATAU_SIMD_CLONES void compact_d3(const double* o0, std::int64_t m, std::int64_t r0,
                                       std::int64_t r1, double c, double (&acc)[kLanes]) {
   compact_segment<3, true>(o0, m, r0, r1, c, acc);
 }
@@ -125,7 +120,7 @@ struct FusedDd {
   };
 };
 
-SIGMATAU_SWEEP_CLONES void fused_compact(int order, int G, const double* o, std::int64_t m0,
+SIGMATAU_SIMD_CLONES void fused_compact(int order, int G, const double* o, std::int64_t m0,
                                          const double* c, double* out, const double* prefetch) {
   if (order == 2) {
     with_group_size<FusedCompact<2>::Kernel>(G, o, m0, c, out, prefetch);
@@ -133,7 +128,7 @@ SIGMATAU_SWEEP_CLONES void fused_compact(int order, int G, const double* o, std:
     with_group_size<FusedCompact<3>::Kernel>(G, o, m0, c, out, prefetch);
   }
 }
-SIGMATAU_SWEEP_CLONES void fused_dd(int order, int G, const double* h, const double* l,
+SIGMATAU_SIMD_CLONES void fused_dd(int order, int G, const double* h, const double* l,
                                     std::int64_t m0, double* out) {
   if (order == 2) {
     with_group_size<FusedDd<2>::Kernel>(G, h, l, m0, out);
@@ -144,7 +139,7 @@ SIGMATAU_SWEEP_CLONES void fused_dd(int order, int G, const double* h, const dou
 
 /// Splits o[k] = x[k] - base[k / kBaseBlock] (see CompactPhase) from the double-double phase,
 /// one base block at a time.
-SIGMATAU_SWEEP_CLONES void split_block(const double* h, const double* l, std::int64_t len,
+SIGMATAU_SIMD_CLONES void split_block(const double* h, const double* l, std::int64_t len,
                                        double bh, double bl, double* o) {
   for (std::int64_t i = 0; i < len; ++i) o[i] = (h[i] - bh) + (l[i] - bl);
 }
