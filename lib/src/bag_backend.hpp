@@ -44,6 +44,17 @@ std::unique_ptr<BagBackend> open_rosbag2_sqlite(const std::string& path);
 /// metadata.yaml (with line and column) or the file at fault; refuses file-level compression.
 std::unique_ptr<BagBackend> open_rosbag2_folder(const std::string& dir);
 
+/// Adds one connection / channel to `list`: several may share a topic, which is listed once
+/// (with the first type seen); with `with_counts` their message counts add up, else the topic's
+/// count stays -1 (unknown).
+void add_topic(std::vector<BagTopic>& list, const std::string& name, const std::string& type,
+               std::int64_t messages, bool with_counts);
+/// Sorts a topic list by name (the order the topic listings print).
+void sort_topics(std::vector<BagTopic>& list);
+/// ParseError "no topic <topic> in the bag; its topics: <name (type), ...>" (or "none").
+[[noreturn]] void throw_missing_topic(const std::string& file, const std::string& topic,
+                                      const std::vector<BagTopic>& topics);
+
 /// ParseError "<where>: topic <topic> has type <type>, expected sensor_msgs/Imu ...".
 [[noreturn]] void throw_wrong_type(const std::string& file, const std::string& where,
                                    const std::string& topic, const std::string& type);

@@ -110,6 +110,30 @@ std::unique_ptr<BagBackend> open_bag(const std::string& path) {
                      "or .db3 extension, not a folder with metadata.yaml)");
 }
 
+void add_topic(std::vector<BagTopic>& list, const std::string& name, const std::string& type,
+               std::int64_t messages, bool with_counts) {
+  auto it = std::find_if(list.begin(), list.end(), [&](const BagTopic& t) { return t.name == name; });
+  if (it == list.end()) {
+    list.push_back({name, type, with_counts ? 0 : -1});
+    it = list.end() - 1;
+  }
+  if (with_counts) it->messages += messages;
+}
+
+void sort_topics(std::vector<BagTopic>& list) {
+  std::sort(list.begin(), list.end(),
+            [](const BagTopic& a, const BagTopic& b) { return a.name < b.name; });
+}
+
+[[noreturn]] void throw_missing_topic(const std::string& file, const std::string& topic,
+                                      const std::vector<BagTopic>& topics) {
+  std::string names;
+  for (const BagTopic& t : topics) names += (names.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
+  throw ParseError(file, 0, 0,
+                   "no topic " + topic + " in the bag; its topics: " +
+                       (names.empty() ? std::string("none") : names));
+}
+
 [[noreturn]] void throw_wrong_type(const std::string& file, const std::string& where,
                                    const std::string& topic, const std::string& type) {
   throw ParseError(file, 0, 0,

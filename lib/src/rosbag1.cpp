@@ -171,7 +171,8 @@ class Ros1Bag final : public BagBackend {
         continue;
       }
       if (!next_chunk()) {
-        if (!indexed_ && !scanned_ && !seen_topic_) throw_missing_topic();
+        if (!indexed_ && !scanned_ && !seen_topic_)
+          throw_missing_topic(file_.name(), topic_, topic_list(false));
         return false;
       }
     }
@@ -286,29 +287,9 @@ class Ros1Bag final : public BagBackend {
 
   std::vector<BagTopic> topic_list(bool with_counts) const {
     std::vector<BagTopic> list;
-    for (const auto& entry : conns_) {
-      const Connection& c = entry.second;  // not a structured binding: clang 14 cannot capture one
-      auto it = std::find_if(list.begin(), list.end(),
-                             [&](const BagTopic& t) { return t.name == c.topic; });
-      if (it == list.end()) {
-        list.push_back({c.topic, c.type, with_counts ? 0 : -1});
-        it = list.end() - 1;
-      }
-      if (with_counts) it->messages += c.messages;
-    }
-    std::sort(list.begin(), list.end(),
-              [](const BagTopic& a, const BagTopic& b) { return a.name < b.name; });
+    for (const auto& [id, c] : conns_) add_topic(list, c.topic, c.type, c.messages, with_counts);
+    sort_topics(list);
     return list;
-  }
-
-  [[noreturn]] void throw_missing_topic() {
-    std::string names;
-    for (const BagTopic& t : topic_list(false)) {
-      names += (names.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
-    }
-    throw ParseError(file_.name(), 0, 0,
-                     "no topic " + topic_ + " in the bag; its topics: " +
-                         (names.empty() ? std::string("none") : names));
   }
 
   /// Counts the messages of every connection by reading the whole (unindexed) bag.

@@ -95,8 +95,7 @@ class Rosbag2Folder final : public BagBackend {
         }
       }
     }
-    std::sort(all.begin(), all.end(),
-              [](const BagTopic& a, const BagTopic& b) { return a.name < b.name; });
+    sort_topics(all);
     return all;
   }
 

@@ -103,17 +103,8 @@ class Rosbag2Sqlite final : public BagBackend {
       counted_ = true;
     }
     std::vector<BagTopic> list;
-    for (const Topic& t : topics_) {
-      auto it = std::find_if(list.begin(), list.end(),
-                             [&](const BagTopic& b) { return b.name == t.name; });
-      if (it == list.end()) {
-        list.push_back({t.name, t.type, counted_ ? 0 : -1});
-        it = list.end() - 1;
-      }
-      if (counted_) it->messages += t.messages;
-    }
-    std::sort(list.begin(), list.end(),
-              [](const BagTopic& a, const BagTopic& b) { return a.name < b.name; });
+    for (const Topic& t : topics_) add_topic(list, t.name, t.type, t.messages, counted_);
+    sort_topics(list);
     return list;
   }
 
