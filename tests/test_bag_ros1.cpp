@@ -3,7 +3,6 @@
 //
 // Values are compared bit for bit: the reader copies the float64 of the message unchanged. Times
 // are compared exactly too: t_s is (stamp_ns - first_ns) / 1e9 computed from exact integers.
-#include <unistd.h>
 
 #include <bit>
 #include <cstdint>
@@ -18,6 +17,7 @@
 #include "ros1_bag_writer.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
+#include "temp_dir.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -28,25 +28,9 @@ using Compression = Ros1BagWriter::Compression;
 
 namespace {
 
-/// A fresh directory in the temp directory, removed when the test ends.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("sigmatau_test_bag_ros1_" + std::to_string(::getpid()) + "_" +
-             std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
+/// A fresh directory for one test, removed when it ends.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("sigmatau_test_bag_ros1") {}
 };
 
 /// 200 Hz from an epoch stamp with a nanosecond part, so rounding would show.

@@ -5,45 +5,32 @@
 // Values are compared bit for bit (==, no tolerance): the reader copies the float64 of the
 // message unchanged. Errors in a .db3 must name the row id of the message at fault.
 #include <sqlite3.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
-#include "../lib/src/bag_backend.hpp"  // internal interface under test
+#include "bag_backend_checks.hpp"
 #include "ros2_bag_writer.hpp"
 #include "sigmatau/error.hpp"
+#include "temp_dir.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace sigmatau;
 using sigmatau::detail::ImuSample;
 using sigmatau::test::CdrKind;
+using sigmatau::test::check_same;
+using sigmatau::test::read_all;
 using sigmatau::test::ImuValue;
 using sigmatau::test::Ros2Topic;
 
 namespace {
 
-/// A fresh directory in the temp directory, removed when the test ends.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() / ("sigmatau_test_bag_rosbag2_" + std::to_string(::getpid()) +
-                                         "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path file(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
+/// A fresh directory for one test, removed when it ends.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("sigmatau_test_bag_rosbag2") {}
 };
 
 std::vector<Ros2Topic> two_topics(std::size_t n, std::uint64_t seed,
@@ -56,27 +43,6 @@ std::vector<Ros2Topic> two_topics(std::size_t n, std::uint64_t seed,
   other.type = "tf2_msgs/msg/TFMessage";
   other.values = test::make_imu_values(n / 4, seed + 1);
   return {imu, other};
-}
-
-std::vector<ImuSample> read_all(detail::BagBackend& bag, const std::string& topic) {
-  REQUIRE(bag.select(topic));
-  std::vector<ImuSample> out;
-  ImuSample s;
-  while (bag.next(s)) out.push_back(s);
-  return out;
-}
-
-void check_same(const std::vector<ImuSample>& got, const std::vector<ImuValue>& want) {
-  REQUIRE(got.size() == want.size());
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    INFO("message " << i);
-    CHECK(got[i].header_ns == want[i].header_ns);
-    CHECK(got[i].receive_ns == want[i].receive_ns);
-    for (int k = 0; k < 3; ++k) {
-      CHECK(got[i].gyro[k] == want[i].gyro[k]);  // bit for bit: no tolerance
-      CHECK(got[i].accel[k] == want[i].accel[k]);
-    }
-  }
 }
 
 template <class F>
