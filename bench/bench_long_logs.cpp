@@ -4,6 +4,7 @@
 // sample.
 //
 //   bench_long_logs OUT_PREFIX [--quick] [--runs R]
+//   bench_long_logs OUT_PREFIX --stream-only N [--runs R]
 //
 // writes OUT_PREFIX.md and OUT_PREFIX.csv and prints the Markdown table. Each configuration runs
 // in its own child process (fork), so "peak RSS" is that configuration's own high-water mark
@@ -27,6 +28,9 @@
 // median over taus of |dev / dev_exact - 1|, and the median and minimum over taus of
 // edf / edf_exact (the price of the stride in confidence). --quick: N = 1e5 and 1e6, one run
 // (a smoke test, seconds).
+// --stream-only N: only the stream rows at N samples (no exact reference, no ingestion table):
+// prints CPU and wall ns per sample for each K and writes every curve (m, deviation, EDF, 17
+// digits) to OUT_PREFIX_stream.txt, to compare two builds of the stream mode value for value.
 //
 // A second table (OUT_PREFIX.md, and OUT_PREFIX_ingest.csv) gives CSV ingestion: LogReader on a
 // 1e6-row, 7-column IMU CSV (time stamp + 3 gyro + 3 accel, ~78 bytes a row, in the temp
@@ -388,14 +392,19 @@ std::string format(double v, const char* spec) {
 
 int main(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: bench_long_logs OUT_PREFIX [--quick] [--runs R]\n");
+    std::fprintf(stderr,
+                 "usage: bench_long_logs OUT_PREFIX [--quick] [--runs R]\n"
+                 "       bench_long_logs OUT_PREFIX --stream-only N [--runs R]\n");
     return 2;
   }
   const std::string prefix = argv[1];
   bool quick = false;
   int runs = 3;
+  std::int64_t stream_only = 0;
   for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--quick") == 0) {
+    if (std::strcmp(argv[i], "--stream-only") == 0 && i + 1 < argc) {
+      stream_only = std::max<std::int64_t>(1, std::atoll(argv[++i]));
+    } else if (std::strcmp(argv[i], "--quick") == 0) {
       quick = true;
       runs = 1;
     } else if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
@@ -409,6 +418,29 @@ int main(int argc, char** argv) {
       quick ? std::vector<std::int64_t>{100'000, 1'000'000}
             : std::vector<std::int64_t>{1'000'000, 10'000'000, 100'000'000};
   const int densities[] = {1, 2, 4, 8, 16, 32};
+  if (stream_only > 0) {
+    std::ostringstream values;
+    values.precision(17);
+    std::printf("N %lld, median of %d run(s)\n| K | wall ns/sample | CPU ns/sample |\n|---|---|---|\n",
+                static_cast<long long>(stream_only), runs);
+    for (const int k : densities) {
+      std::vector<double> ts, tsc;
+      Measurement s;
+      for (int r = 0; r < runs; ++r) {
+        s = in_child([stream_only, k] { return run_stream(stream_only, k); });
+        ts.push_back(s.seconds);
+        tsc.push_back(s.cpu_seconds);
+      }
+      std::printf("| %d | %.2f | %.2f |\n", k, median(ts) / static_cast<double>(stream_only) * 1e9,
+                  median(tsc) / static_cast<double>(stream_only) * 1e9);
+      std::fflush(stdout);
+      for (std::size_t i = 0; i < s.m.size(); ++i) {
+        values << k << ' ' << s.m[i] << ' ' << s.dev[i] << ' ' << s.edf[i] << '\n';
+      }
+    }
+    std::ofstream(prefix + "_stream.txt") << values.str();
+    return 0;
+  }
 
   std::vector<Row> rows;
   const auto per_sample = [](const std::vector<double>& seconds, std::int64_t n) {
