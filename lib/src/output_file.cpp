@@ -38,50 +38,61 @@ void check_can_write(const std::filesystem::path& path, bool overwrite) {
   }
 }
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view content,
-                           bool overwrite) {
-  check_can_write(path, overwrite);
-  const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)
+    : path_(std::move(path)), overwrite_(overwrite) {
+  check_can_write(path_, overwrite_);
+  const auto parent = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   std::filesystem::create_directories(parent, ec);
   if (ec) throw Error("cannot create directory " + parent.string() + ": " + ec.message());
+  temporary_ = temporary_name(path_);
+  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error("cannot write " + path_.string() + ": " + errno_text());
+}
 
-  const auto tmp = temporary_name(path);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error("cannot write " + path.string() + ": " + errno_text());
-  auto fail = [&](const std::string& what) {
-    const std::string reason = errno_text();
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw Error(what + " " + path.string() + ": " + reason);
-  };
-  const char* data = content.data();
-  std::size_t left = content.size();
+AtomicOutputFile::~AtomicOutputFile() {
+  if (committed_) return;
+  if (fd_ >= 0) ::close(fd_);
+  ::unlink(temporary_.c_str());
+}
+
+void AtomicOutputFile::write(std::string_view bytes) {
+  if (fd_ < 0) throw Error("cannot write " + path_.string() + ": file already closed");
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
   while (left > 0) {
-    const ssize_t written = ::write(fd, data, left);
+    const ssize_t written = ::write(fd_, data, left);
     if (written < 0) {
       if (errno == EINTR) continue;
-      fail("cannot write");
+      throw Error("cannot write " + path_.string() + ": " + errno_text());
     }
     data += written;
     left -= static_cast<std::size_t>(written);
   }
-  if (::fsync(fd) != 0) fail("cannot flush");
-  if (::close(fd) != 0) {
-    const std::string reason = errno_text();
-    ::unlink(tmp.c_str());
-    throw Error("cannot write " + path.string() + ": " + reason);
-  }
+}
+
+void AtomicOutputFile::commit() {
+  if (fd_ < 0) throw Error("cannot write " + path_.string() + ": file already closed");
+  if (::fsync(fd_) != 0) throw Error("cannot flush " + path_.string() + ": " + errno_text());
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) throw Error("cannot write " + path_.string() + ": " + errno_text());
   // Re-check just before the rename so a file created meanwhile is not replaced silently.
-  if (!overwrite && std::filesystem::exists(path, ec)) {
-    ::unlink(tmp.c_str());
-    throw Error(path.string() + " exists; use --force to overwrite it");
+  std::error_code ec;
+  if (!overwrite_ && std::filesystem::exists(path_, ec)) {
+    throw Error(path_.string() + " exists; use --force to overwrite it");
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = errno_text();
-    ::unlink(tmp.c_str());
-    throw Error("cannot rename into " + path.string() + ": " + reason);
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    throw Error("cannot rename into " + path_.string() + ": " + errno_text());
   }
+  committed_ = true;
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content,
+                           bool overwrite) {
+  AtomicOutputFile file(path, overwrite);
+  file.write(content);
+  file.commit();
 }
 
 }  // namespace sigmatau

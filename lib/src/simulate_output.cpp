@@ -1,17 +1,11 @@
 // Simulated logs to files (csv, f32, f64) with their sidecar JSON, written atomically.
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include <bit>
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 #include <future>
 #include <limits>
-#include <random>
 #include <utility>
 
 #include "sigmatau/error.hpp"
@@ -65,35 +59,6 @@ nlohmann::json model_json(const ErrorModel& m, Sensor sensor, const Eigen::Vecto
   j["expected_mean"] = vector_json(m.deterministic_output(truth, temperature_k));
   j["noise"] = {terms_json(m.noise[0]), terms_json(m.noise[1]), terms_json(m.noise[2])};
   return j;
-}
-
-/// Removes the temporary file unless released (any exception on the way leaves nothing behind).
-struct TempFile {
-  std::filesystem::path path;
-  std::FILE* file = nullptr;
-  bool keep = false;
-  ~TempFile() {
-    if (file) std::fclose(file);
-    if (!keep) {
-      std::error_code ec;
-      std::filesystem::remove(path, ec);
-    }
-  }
-};
-
-std::filesystem::path temporary_name(const std::filesystem::path& path) {
-  std::random_device device;
-  std::uniform_int_distribution<unsigned> digits(0, 0xFFFFFF);
-  char suffix[16];
-  std::snprintf(suffix, sizeof suffix, ".tmp-%06x", digits(device));
-  auto name = path;
-  name += suffix;
-  return name;
-}
-
-void write_all(TempFile& f, const char* data, std::size_t size) {
-  if (size && std::fwrite(data, 1, size, f.file) != size)
-    throw Error("cannot write " + f.path.string() + ": " + std::strerror(errno));
 }
 
 void append_number(std::string& s, double v) {
@@ -278,11 +243,7 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
   check_can_write(sidecar_path, overwrite);
   const std::string sidecar = simulation_sidecar_json(config);  // validates
   Simulator simulator(config);
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-
-  TempFile tmp{temporary_name(path)};
-  tmp.file = std::fopen(tmp.path.c_str(), "wb");
-  if (!tmp.file) throw Error("cannot create " + tmp.path.string() + ": " + std::strerror(errno));
+  AtomicOutputFile file(path, overwrite);
   const int nch = simulator.channels();
   // Output scale per channel: SI value / unit factor (temperature stays in K).
   std::vector<double> inverse_factor;
@@ -296,7 +257,7 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
     text = "t";
     for (const auto& n : simulator.channel_names()) text += "," + n;
     text += "\n";
-    write_all(tmp, text.data(), text.size());
+    file.write(text);
   }
   static_assert(std::endian::native == std::endian::little,
                 "binary output is little-endian; add byte swapping for this platform");
@@ -325,12 +286,12 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
           }
           text += '\n';
         }
-        write_all(tmp, text.data(), text.size());
+        file.write(text);
       } else if (format == SampleFormat::f64) {
-        write_all(tmp, reinterpret_cast<const char*>(block.data()), values * sizeof(double));
+        file.write({reinterpret_cast<const char*>(block.data()), values * sizeof(double)});
       } else {
         floats.assign(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(values));
-        write_all(tmp, reinterpret_cast<const char*>(floats.data()), values * sizeof(float));
+        file.write({reinterpret_cast<const char*>(floats.data()), values * sizeof(float)});
       }
       if (progress) progress(next_first, config.samples);
     } catch (...) {
@@ -341,16 +302,9 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
     first = next_first;
     std::swap(block, next_block);
   }
-  if (std::fflush(tmp.file) != 0 || ::fsync(::fileno(tmp.file)) != 0)
-    throw Error("cannot write " + tmp.path.string() + ": " + std::strerror(errno));
-  std::fclose(tmp.file);
-  tmp.file = nullptr;
   // The sidecar first: a log without its truth is worse than truth without its log.
   write_file_atomically(sidecar_path, sidecar, overwrite);
-  std::error_code ec;
-  std::filesystem::rename(tmp.path, path, ec);
-  if (ec) throw Error("cannot rename " + tmp.path.string() + " to " + path.string() + ": " + ec.message());
-  tmp.keep = true;
+  file.commit();
 }
 
 }  // namespace sigmatau

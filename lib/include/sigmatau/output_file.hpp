@@ -19,4 +19,31 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// Throws the same "exists" Error as write_file_atomically, early, before long work starts.
 void check_can_write(const std::filesystem::path& path, bool overwrite);
 
+/// A file written piece by piece (too large to hold as one string) that appears at `path` only
+/// when commit() succeeds: it is written to "<path>.tmp-<random>" in the same directory, and the
+/// temporary file is removed if the object is destroyed before commit() (an exception on the
+/// way leaves nothing behind). write_file_atomically is this class used once.
+class AtomicOutputFile {
+ public:
+  /// Checks `path` as check_can_write does, creates missing parent directories and opens the
+  /// temporary file. Throws Error when any of that fails.
+  AtomicOutputFile(std::filesystem::path path, bool overwrite);
+  ~AtomicOutputFile();
+  AtomicOutputFile(const AtomicOutputFile&) = delete;
+  AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
+
+  /// Appends `bytes`. Throws Error naming the file when the write fails (e.g. disk full).
+  void write(std::string_view bytes);
+  /// Flushes to disk and renames over `path` (re-checking first that no file appeared there
+  /// meanwhile unless overwriting). Throws Error on failure; the temporary file is removed.
+  void commit();
+
+ private:
+  std::filesystem::path path_;
+  std::filesystem::path temporary_;
+  bool overwrite_ = false;
+  int fd_ = -1;
+  bool committed_ = false;
+};
+
 }  // namespace sigmatau
