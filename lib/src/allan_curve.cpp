@@ -2,9 +2,11 @@
 #include "sigmatau/allan_curve.hpp"
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "allan_curve_assembly.hpp"
+#include "noise_identification.hpp"
 #include "parallel_items.hpp"
 #include "sigmatau/error.hpp"
 
@@ -86,9 +88,19 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
 
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level, EdfModel edf_model) {
+  // One buffer for the averaged series of every tau (sized by the first, smallest m): fresh
+  // pages per tau cost more in kernel zeroing than the identification itself.
+  std::unique_ptr<double[]> scratch;
+  std::int64_t capacity = 0;
   return detail::assemble_allan_curve(
-      series, statistic, taus, confidence_level, edf_model,
-      [&](std::int64_t m) { return identify_noise(series, statistic, m); });
+      series, statistic, taus, confidence_level, edf_model, [&](std::int64_t m) {
+        const std::int64_t points = detail::averaged_series_points(series, m);
+        if (points >= detail::kMinAcfPoints && points > capacity) {
+          scratch.reset(new double[static_cast<std::size_t>(points)]);  // written before read
+          capacity = points;
+        }
+        return detail::identify_noise_with(series, statistic, m, scratch.get());
+      });
 }
 
 std::vector<std::vector<AllanCurve>> compute_allan_curves(

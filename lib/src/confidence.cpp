@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -209,10 +210,21 @@ NoiseIdentification identify_noise(const PhaseSeries& series, Statistic statisti
     throw Error("identify_noise: averaging factor m = " + std::to_string(m) +
                 " outside 1.." + std::to_string(series.size() - 1));
   const std::int64_t points = detail::averaged_series_points(series, m);
+  // Uninitialised: every value is written by fill_averaged_series before it is read.
+  std::unique_ptr<double[]> z;
+  if (points >= kMinAcfPoints) z.reset(new double[static_cast<std::size_t>(points)]);
+  return detail::identify_noise_with(series, statistic, m, z.get());
+}
+
+namespace detail {
+
+NoiseIdentification identify_noise_with(const PhaseSeries& series, Statistic statistic,
+                                        std::int64_t m, double* scratch) {
+  const std::int64_t points = averaged_series_points(series, m);
   if (points >= kMinAcfPoints) {
-    std::vector<double> z(static_cast<std::size_t>(points));
-    detail::fill_averaged_series(series, m, z.data());
-    return detail::identify_noise_by_acf(z.data(), z.size(), is_phase_input(series), statistic);
+    fill_averaged_series(series, m, scratch);
+    return identify_noise_by_acf(scratch, static_cast<std::size_t>(points),
+                                 is_phase_input(series), statistic);
   }
   NoiseIdentification result;
   result.method = NoiseIdentification::Method::b1_ratio;
@@ -224,8 +236,6 @@ NoiseIdentification identify_noise(const PhaseSeries& series, Statistic statisti
   result.alpha = std::clamp(alpha, lowest_alpha(statistic), 2);
   return result;
 }
-
-namespace detail {
 
 std::int64_t averaged_series_points(const PhaseSeries& series, std::int64_t m) {
   const std::int64_t N = series.size();

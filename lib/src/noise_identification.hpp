@@ -22,6 +22,13 @@ std::int64_t averaged_series_points(const PhaseSeries& series, std::int64_t m);
 /// Writes z (averaged_series_points values) to out.
 void fill_averaged_series(const PhaseSeries& series, std::int64_t m, double* out);
 
+/// identify_noise (1 <= m < series.size()) with the averaged series written to `scratch`,
+/// which must hold averaged_series_points(series, m) doubles when that is >= kMinAcfPoints (it
+/// is not touched otherwise): the taus of a curve share one buffer instead of allocating and
+/// zeroing one each.
+NoiseIdentification identify_noise_with(const PhaseSeries& series, Statistic statistic,
+                                        std::int64_t m, double* scratch);
+
 /// The lag-1 ACF identification of z[0..n), n >= kMinAcfPoints, which it overwrites (z is
 /// differenced in place). Method lag1_acf, or assumed (alpha 0) for a constant series; alpha
 /// clamped to the range the statistic can resolve.
