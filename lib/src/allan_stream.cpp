@@ -1,4 +1,10 @@
-// Bounded-memory single-pass Allan-family deviations (see allan_stream.hpp).
+// Bounded-memory single-pass Allan-family deviations (see allan_stream.hpp): the driver. It cuts
+// the input into chunks of kChunk samples and passes each chunk through
+//   StreamPhase   (allan_stream_phase.*)   samples -> double-double phase points (and P),
+//   Level         (allan_stream_levels.*)  the phase decimated to every power-of-two stride,
+//   StridedTerms  (allan_stream_terms.*)   the sum of squares of each statistic and factor,
+//   NoiseSums     (allan_stream_noise.*)   the lag-1 autocorrelation sums of each factor,
+// and forms the curves from the sums.
 //
 // Glossary:
 //   K        overlap density (start points per tau)
@@ -17,36 +23,29 @@
 #include <limits>
 #include <string>
 
-#include "allan_dd.hpp"
+#include "allan_stream_levels.hpp"
 #include "allan_stream_noise.hpp"
-#include "allan_sums.hpp"
+#include "allan_stream_phase.hpp"
+#include "allan_stream_terms.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
 namespace {
 
-using detail::DoubleDouble;
-using detail::NoiseState;
-using detail::SumAndError;
-using detail::two_sum;
+using detail::Doubles;
+using detail::Level;
+using detail::NoiseSums;
+using detail::StridedTerms;
 
 /// Samples per internal chunk: level-0 buffers hold about this many points.
 constexpr std::int64_t kChunk = 65536;
-/// Terms per call of the lane kernel (each lane's plain-double sum stays short, as in allan_sums).
-constexpr std::int64_t kKernelTerms = 2048;
 /// Largest averaging factor prepared (2^40 samples: 35 years at 1 kHz).
 constexpr std::int64_t kMaxFactor = std::int64_t{1} << 40;
 /// Largest lag q = m / s in stride units: taus without a large power-of-two factor (e.g. an
 /// explicit odd m) would need 3 q points of memory; beyond this that is an Error.
 constexpr std::int64_t kMaxLag = std::int64_t{1} << 16;
-/// Fewest points at m for the lag-1 ACF (confidence.cpp, Riley & Greenhall 2004).
-constexpr std::int64_t kMinAcfPoints = 30;
-/// Differencing stops once r1 / (1 + r1) is below this value (confidence.cpp).
-constexpr double kStationaryDelta = 0.25;
-/// Block means kept per factor for the B1 ratio (used only while fewer than kMinAcfPoints exist).
-constexpr std::int64_t kKeptMeans = kMinAcfPoints + 1;
-/// Renormalise the running double-double phase this often (as phase_series.cpp).
-constexpr std::int64_t kRenormalise = 4096;
+/// z values formed per NoiseSums::add call (they stay in the L1 cache until summed).
+constexpr std::size_t kNoiseTile = 1024;
 
 int difference_order(Statistic s) {
   return (s == Statistic::hdev || s == Statistic::ohdev || s == Statistic::mdev ||
@@ -56,8 +55,9 @@ int difference_order(Statistic s) {
 }
 bool uses_running_sum(Statistic s) { return s == Statistic::mdev || s == Statistic::tdev; }
 bool non_overlapping(Statistic s) { return s == Statistic::adev || s == Statistic::hdev; }
-/// The difference order confidence.cpp identifies noise with (MDEV is an Allan variance).
-int noise_order(Statistic s) { return (s == Statistic::hdev || s == Statistic::ohdev) ? 3 : 2; }
+/// Series the noise sums need: identify_noise differences at most 2 times for the Allan-type
+/// statistics (MDEV too), 3 times for the Hadamard ones.
+int noise_orders(Statistic s) { return (s == Statistic::hdev || s == Statistic::ohdev) ? 4 : 3; }
 
 /// compute_allan_curve keeps the previous tau's noise type once floor((N-1)/m) averages are at
 /// most this many (allan_curve.cpp, from Stable32).
@@ -77,25 +77,6 @@ int log2_exact(std::int64_t p) {
   return j;
 }
 
-struct Level {
-  std::int64_t stride = 1;
-  std::int64_t begin = 0;  // level index of element 0 of the buffers
-  detail::Doubles xh, xl, ph, pl;
-  std::int64_t x_end() const { return begin + static_cast<std::int64_t>(xh.size()); }
-  std::int64_t p_end() const { return begin + static_cast<std::int64_t>(ph.size()); }
-};
-
-struct TauState {
-  Statistic statistic;
-  std::int64_t m = 0, stride = 1, lag = 1, step = 1;
-  int level = 0;
-  int order = 2;
-  bool running_sum = false;
-  std::int64_t next = 0;  // next term start, level index
-  std::int64_t terms = 0;
-  DoubleDouble sum;
-};
-
 }  // namespace
 
 struct AllanStream::Impl {
@@ -103,16 +84,13 @@ struct AllanStream::Impl {
   double tau0_s;
   StreamSettings settings;
   bool need_p = false;
+  detail::StreamPhase phase{DataKind::rate};
   std::vector<Level> levels;
-  std::vector<TauState> taus;
+  std::vector<StridedTerms> taus;
   std::vector<std::int64_t> noise_factors;  // ascending distinct m
-  std::vector<NoiseState> noise;
+  std::vector<NoiseSums> noise;
   std::vector<int> noise_level;
-  // Running phase.
-  bool started = false;
-  double offset = 0;  // y0bar (rate, increment) or x_0 (phase)
-  double h = 0, l = 0;
-  DoubleDouble p_run;
+  Doubles noise_tile;  // NoiseSums::kHistory + kNoiseTile doubles of scratch
   std::int64_t samples = 0;  // values added
   std::int64_t points = 0;   // phase points emitted
   std::vector<double> pending;  // input not yet processed (less than kChunk samples)
@@ -124,12 +102,10 @@ struct AllanStream::Impl {
     return std::min(dividing, cap);
   }
 
-  /// Integrates a chunk into nh, nl (its new level-0 points) and, for MDEV, nph, npl (the
-  /// running sum P before each point).
+  /// Integrates a chunk into level 0 (its new points, and P before each for MDEV), then feeds
+  /// the coarser levels, the sums and the noise state.
   void process_chunk(std::span<const double> y) {
-    std::size_t w = 0;  // points written
-    const bool adds_start = !started && kind != DataKind::phase;
-    const std::size_t count = y.size() + (adds_start ? 1 : 0);
+    const std::size_t count = phase.points_for(y.size());
     // The new points go straight to the end of level 0 (stride 1), which holds every point.
     Level& base = levels[0];
     const std::size_t old = base.xh.size();
@@ -137,69 +113,7 @@ struct AllanStream::Impl {
     base.xl.resize(old + count);
     double* nh = base.xh.data() + old;
     double* nl = base.xl.data() + old;
-    if (!started) {
-      started = true;
-      if (kind == DataKind::phase) {
-        offset = y[0];
-      } else {
-        long double total = 0;
-        for (const double v : y) total += v;
-        offset = static_cast<double>(total / static_cast<long double>(y.size()));
-        nh[0] = 0.0;
-        nl[0] = 0.0;
-        w = 1;
-      }
-    }
-    double finite_check = 0.0;
-    if (kind == DataKind::phase) {
-      for (std::size_t i = 0; i < y.size(); ++i) {
-        const SumAndError d = two_sum(y[i], -offset);
-        finite_check += d.sum * 0.0;
-        nh[w + i] = d.sum;
-        nl[w + i] = d.err;
-      }
-    } else {
-      // The running double-double phase, renormalised after every kRenormalise samples of the
-      // whole stream.
-      std::size_t i = 0;
-      while (i < y.size()) {
-        const std::int64_t done = samples + static_cast<std::int64_t>(i);
-        const std::size_t run = std::min<std::size_t>(
-            y.size() - i, static_cast<std::size_t>(kRenormalise - done % kRenormalise));
-        double hh = h, ll = l;
-        SumAndError n{hh, ll};
-        for (std::size_t j = i; j < i + run; ++j) {
-          const SumAndError d = two_sum(y[j], -offset);
-          finite_check += d.sum * 0.0;
-          const SumAndError t = two_sum(hh, d.sum);
-          hh = t.sum;
-          ll += t.err + d.err;
-          n = two_sum(hh, ll);
-          nh[w + j] = n.sum;
-          nl[w + j] = n.err;
-        }
-        i += run;
-        if ((done + static_cast<std::int64_t>(run)) % kRenormalise == 0) {
-          hh = n.sum;
-          ll = n.err;
-        }
-        h = hh;
-        l = ll;
-      }
-    }
-    if (need_p) {
-      base.ph.resize(old + count);
-      base.pl.resize(old + count);
-      double* nph = base.ph.data() + old;
-      double* npl = base.pl.data() + old;
-      for (std::size_t k = 0; k < count; ++k) {
-        nph[k] = p_run.hi;
-        npl[k] = p_run.lo;
-        p_run.add(nh[k], nl[k]);
-      }
-    }
-    points += static_cast<std::int64_t>(count);
-    if (!(finite_check == 0.0) || !std::isfinite(h)) {
+    if (!phase.integrate(y, samples, nh, nl)) {
       for (std::size_t i = 0; i < y.size(); ++i) {
         if (!std::isfinite(y[i])) {
           throw Error("sample " + std::to_string(samples + static_cast<std::int64_t>(i)) +
@@ -208,112 +122,64 @@ struct AllanStream::Impl {
       }
       throw Error("samples are too large to process (their sum overflows)");
     }
+    if (need_p) {
+      base.ph.resize(old + count);
+      base.pl.resize(old + count);
+      phase.running_sum(nh, nl, count, base.ph.data() + old, base.pl.data() + old);
+    }
+    points += static_cast<std::int64_t>(count);
     samples += static_cast<std::int64_t>(y.size());
-    distribute(static_cast<std::int64_t>(count));
-    for (auto& tau : taus) run_terms(tau);
+    detail::distribute_points(levels, points, static_cast<std::int64_t>(count), need_p);
+    for (auto& tau : taus) tau.run(levels[static_cast<std::size_t>(tau.level)]);
     feed_noise();
     trim();
   }
 
-  /// Appends the chunk's `count` new points (already at the end of level 0) to the other levels
-  /// (level j takes the points whose index is a multiple of 2^j).
-  void distribute(std::int64_t count) {
-    const std::int64_t first = points - count;
-    const Level& base = levels[0];
-    auto take = [&](detail::Doubles& to, const detail::Doubles& from, std::int64_t k0,
-                    std::int64_t stride, std::size_t n) {
-      const std::size_t old = to.size();
-      to.resize(old + n);
-      const double* src = from.data() + (k0 - base.begin);
-      for (std::size_t c = 0; c < n; ++c) to[old + c] = src[static_cast<std::int64_t>(c) * stride];
-    };
-    for (std::size_t j = 1; j < levels.size(); ++j) {
-      Level& level = levels[j];
-      const std::int64_t s = level.stride;
-      const std::int64_t k0 = (first + s - 1) / s * s;
-      if (k0 >= points) continue;
-      const auto n = static_cast<std::size_t>((points - 1 - k0) / s + 1);
-      take(level.xh, base.xh, k0, s, n);
-      take(level.xl, base.xl, k0, s, n);
-      if (need_p) {
-        take(level.ph, base.ph, k0, s, n);
-        take(level.pl, base.pl, k0, s, n);
-      }
-    }
-  }
-
-  void run_terms(TauState& tau) {
-    Level& level = levels[static_cast<std::size_t>(tau.level)];
-    // P[k] is known for k < points too (it lags x by one; P[points] follows with the next point,
-    // so MDEV terms end one point later than they could: harmless, finish() adds the last).
-    const std::int64_t end = tau.running_sum ? level.p_end() : level.x_end();
-    const std::int64_t span = static_cast<std::int64_t>(tau.order) * tau.lag;
-    const double* hh = tau.running_sum ? level.ph.data() : level.xh.data();
-    const double* ll = tau.running_sum ? level.pl.data() : level.xl.data();
-    if (tau.step == 1) {
-      while (tau.next + span < end) {
-        const std::int64_t len = std::min(kKernelTerms, end - span - tau.next);
-        tau.sum.add(detail::sum_squares(hh, ll, tau.order, tau.lag, tau.next - level.begin, len));
-        tau.terms += len;
-        tau.next += len;
-      }
-    } else {
-      double acc = 0.0;
-      for (; tau.next + span < end; tau.next += tau.step) {
-        acc += detail::sum_squares(hh, ll, tau.order, tau.lag, tau.next - level.begin, 1);
-        ++tau.terms;
-      }
-      tau.sum.add(acc);
-    }
-  }
-
   void feed_noise() {
+    double* z_tile = noise_tile.data() + NoiseSums::kHistory;
     for (std::size_t i = 0; i < noise_factors.size(); ++i) {
       const std::int64_t m = noise_factors[i];
       const Level& level = levels[static_cast<std::size_t>(noise_level[i])];
       const std::int64_t q = m / level.stride;
-      NoiseState& state = noise[i];
+      NoiseSums& state = noise[i];
       const std::int64_t k_end = (level.x_end() + q - 1) / q;  // first k with k q >= x_end
       if (state.next_k >= k_end) continue;
       const double* xh = level.xh.data();
       const double* xl = level.xl.data();
       const std::int64_t b = level.begin;  // level index of xh[0]
-      for (std::int64_t k = state.next_k;
-           k < k_end && static_cast<std::int64_t>(state.kept.size()) <= kKeptMeans; ++k) {
-        state.kept.push_back(xh[k * q - b] + xl[k * q - b]);
+      for (std::int64_t k = state.next_k; k < k_end && state.wants_kept(); ++k) {
+        state.keep(xh[k * q - b] + xl[k * q - b]);
       }
       std::int64_t k = state.next_k;
       if (kind == DataKind::rate || kind == DataKind::increment) {
         if (k == 0) ++k;  // z needs x[(k-1) m]
       }
-      if (k < k_end) {
-        const std::size_t old = state.batch.size();
-        state.batch.resize(old + static_cast<std::size_t>(k_end - k));
-        double* out = state.batch.data() + old;
+      const double inv_m = 1.0 / static_cast<double>(m);  // as series_at
+      while (k < k_end) {
+        const std::int64_t count = std::min<std::int64_t>(kNoiseTile, k_end - k);
+        double* out = z_tile;
         if (kind == DataKind::phase) {
-          for (std::int64_t j = 0; k + j < k_end; ++j) {
+          for (std::int64_t j = 0; j < count; ++j) {
             const std::int64_t u = (k + j) * q - b;
             out[j] = xh[u] + xl[u];
           }
+        } else if (q == 1) {  // the common case (octave factors): contiguous, vectorised
+          const double* h1 = xh + (k - b);
+          const double* l1 = xl + (k - b);
+          for (std::int64_t j = 0; j < count; ++j) {
+            out[j] = ((h1[j] - h1[j - 1]) + (l1[j] - l1[j - 1])) * inv_m;
+          }
         } else {
-          const double inv_m = 1.0 / static_cast<double>(m);  // as series_at
-          const std::int64_t count = k_end - k;
-          if (q == 1) {  // the common case (octave factors): contiguous, vectorised
-            const double* h1 = xh + (k - b);
-            const double* l1 = xl + (k - b);
-            for (std::int64_t j = 0; j < count; ++j) {
-              out[j] = ((h1[j] - h1[j - 1]) + (l1[j] - l1[j - 1])) * inv_m;
-            }
-          } else {
-            for (std::int64_t j = 0; j < count; ++j) {
-              const std::int64_t u = (k + j) * q - b;
-              out[j] = ((xh[u] - xh[u - q]) + (xl[u] - xl[u - q])) * inv_m;
-            }
+          for (std::int64_t j = 0; j < count; ++j) {
+            const std::int64_t u = (k + j) * q - b;
+            out[j] = ((xh[u] - xh[u - q]) + (xl[u] - xl[u - q])) * inv_m;
           }
         }
+        state.add(noise_tile.data(), static_cast<std::size_t>(count));
+        k += count;
       }
       state.next_k = k_end;
-      state.flush();
+      state.carry();
     }
   }
 
@@ -332,88 +198,18 @@ struct AllanStream::Impl {
       auto& k = keep_from[static_cast<std::size_t>(noise_level[i])];
       k = std::min(k, last);
     }
-    for (std::size_t j = 0; j < levels.size(); ++j) {
-      Level& level = levels[j];
-      const std::int64_t drop = std::min(keep_from[j], level.x_end()) - level.begin;
-      // Amortised: move only when the dead prefix is at least half the buffer.
-      if (drop <= 0 || drop * 2 < static_cast<std::int64_t>(level.xh.size())) continue;
-      auto erase = [drop](detail::Doubles& v) {
-        const auto n = std::min<std::size_t>(static_cast<std::size_t>(drop), v.size());
-        v.erase(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
-      };
-      erase(level.xh);
-      erase(level.xl);
-      erase(level.ph);
-      erase(level.pl);
-      level.begin += drop;
-    }
+    detail::trim_levels(levels, keep_from);
   }
 
-  /// MDEV's last term needs P[N] = P[N-1] + x[N-1], which is emitted with the next point: a
-  /// temporary copy of the tau states sums it without changing the stream.
-  std::vector<TauState> finished_taus() const {
-    std::vector<TauState> result = taus;
+  /// The sums with MDEV's last terms, which need P[N] = P[N-1] + x[N-1] (emitted with the next
+  /// point): a copy, so the stream itself is unchanged.
+  std::vector<StridedTerms> finished_taus() const {
+    std::vector<StridedTerms> result = taus;
     if (!need_p || points == 0) return result;
-    // Levels whose stride divides N = points hold P[N] as their next entry.
     for (auto& tau : result) {
-      if (!tau.running_sum) continue;
-      const Level& level = levels[static_cast<std::size_t>(tau.level)];
-      if (points % level.stride != 0) continue;
-      Level extended = level;
-      extended.ph.push_back(p_run.hi);
-      extended.pl.push_back(p_run.lo);
-      const std::int64_t span = 3 * tau.lag;
-      const std::int64_t end = extended.p_end();
-      for (; tau.next + span < end; tau.next += tau.step) {
-        tau.sum.add(detail::sum_squares(extended.ph.data(), extended.pl.data(), 3, tau.lag,
-                                        tau.next - extended.begin, 1));
-        ++tau.terms;
-      }
+      tau.finish_running_sum(levels[static_cast<std::size_t>(tau.level)],
+                             phase.running_total(), points);
     }
-    return result;
-  }
-
-  NoiseIdentification identify(std::size_t i, Statistic statistic) const {
-    const NoiseState& state = noise[i];
-    const std::int64_t m = noise_factors[i];
-    NoiseIdentification result;
-    const int d_max = noise_order(statistic);
-    const int lowest = d_max == 3 ? -4 : -2;
-    int alpha = 0;
-    if (state.sums[0].n >= kMinAcfPoints) {
-      result.method = NoiseIdentification::Method::lag1_acf;
-      bool found = false;
-      for (int d = 0; d < 4; ++d) {
-        const double r1 = state.sums[d].r1();
-        if (std::isnan(r1)) break;
-        const double delta = r1 / (1 + r1);
-        if (delta < kStationaryDelta || d >= d_max || state.sums[d].n < 3) {
-          alpha = -static_cast<int>(std::lround(2 * delta)) - 2 * d +
-                  (kind == DataKind::phase ? 2 : 0);
-          found = true;
-          break;
-        }
-      }
-      if (!found) {
-        alpha = 0;
-        result.method = NoiseIdentification::Method::assumed;
-      }
-    } else if (state.kept.size() >= 3) {
-      // The few m-sample means (or decimated phase points) as a short series at m' = 1.
-      std::vector<double> z;
-      if (kind == DataKind::phase) {
-        z = state.kept;
-      } else {
-        for (std::size_t k = 1; k < state.kept.size(); ++k) {
-          z.push_back((state.kept[k] - state.kept[k - 1]) / static_cast<double>(m));
-        }
-      }
-      const PhaseSeries shortened = PhaseSeries::from_samples(z, kind, tau0_s * static_cast<double>(m));
-      return identify_noise(shortened, statistic, 1);
-    } else {
-      result.method = NoiseIdentification::Method::assumed;
-    }
-    result.alpha = std::clamp(alpha, lowest, 2);
     return result;
   }
 };
@@ -453,6 +249,7 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
   s.kind = kind;
   s.tau0_s = tau0_s;
   s.settings = settings;
+  s.phase = detail::StreamPhase(kind);
   std::vector<std::int64_t> factors;
   switch (settings.taus.kind) {
     case TauSpec::Kind::octave:
@@ -477,7 +274,7 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
     }
     if (uses_running_sum(statistic)) s.need_p = true;
     for (const std::int64_t m : factors) {
-      TauState tau;
+      StridedTerms tau;
       tau.statistic = statistic;
       tau.m = m;
       tau.stride = s.stride_for(statistic, m);
@@ -502,7 +299,12 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
   for (const auto& tau : s.taus) top = std::max(top, tau.level);
   s.levels.resize(static_cast<std::size_t>(top) + 1);
   for (std::size_t j = 0; j < s.levels.size(); ++j) s.levels[j].stride = std::int64_t{1} << j;
-  s.noise.resize(s.noise_factors.size());
+  int orders = 0;
+  for (const Statistic statistic : settings.statistics) {
+    orders = std::max(orders, noise_orders(statistic));
+  }
+  s.noise.assign(s.noise_factors.size(), NoiseSums(orders));
+  s.noise_tile.resize(NoiseSums::kHistory + kNoiseTile);
   for (const std::int64_t m : s.noise_factors) {
     // The coarsest level whose stride divides m (any tau of this m would do).
     int level = 0;
@@ -542,8 +344,8 @@ void AllanStream::add(std::span<const double> values) {
 std::int64_t AllanStream::size() const {
   const auto pending = static_cast<std::int64_t>(impl_->pending.size());
   if (pending == 0) return impl_->points;
-  const bool adds_start = !impl_->started && impl_->kind != DataKind::phase;
-  return impl_->points + pending + (adds_start ? 1 : 0);
+  return impl_->points +
+         static_cast<std::int64_t>(impl_->phase.points_for(static_cast<std::size_t>(pending)));
 }
 
 std::int64_t AllanStream::stride(Statistic statistic, std::int64_t m) const {
@@ -552,17 +354,14 @@ std::int64_t AllanStream::stride(Statistic statistic, std::int64_t m) const {
 
 std::size_t AllanStream::memory_bytes() const {
   const Impl& s = *impl_;
-  std::size_t bytes = sizeof(Impl) + s.taus.capacity() * sizeof(TauState) +
-                      s.noise.capacity() * sizeof(NoiseState);
+  std::size_t bytes = sizeof(Impl) + s.taus.capacity() * sizeof(StridedTerms) +
+                      s.noise_tile.capacity() * sizeof(double);
   for (const auto& level : s.levels) {
     bytes += sizeof(Level) + (level.xh.capacity() + level.xl.capacity() + level.ph.capacity() +
                               level.pl.capacity()) *
                                  sizeof(double);
   }
-  for (const auto& noise : s.noise) {
-    bytes += (noise.kept.capacity() + noise.batch.capacity() + noise.spare.capacity()) *
-             sizeof(double);
-  }
+  for (const auto& noise : s.noise) bytes += noise.memory_bytes();
   bytes += s.pending.capacity() * sizeof(double);
   return bytes;
 }
@@ -581,7 +380,7 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
   }
   const Impl& s = copy ? *copy : *impl_;
   const std::int64_t N = s.points;
-  const std::vector<TauState> taus = s.finished_taus();
+  const std::vector<StridedTerms> taus = s.finished_taus();
   std::vector<AllanCurve> result;
   for (const Statistic statistic : s.settings.statistics) {
     AllanCurve curve;
@@ -612,7 +411,8 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
       point.value = {md * s.tau0_s, tau.m, tau.terms, std::sqrt(variance)};
       const auto it = std::lower_bound(s.noise_factors.begin(), s.noise_factors.end(), tau.m);
       point.confidence.noise =
-          s.identify(static_cast<std::size_t>(it - s.noise_factors.begin()), statistic);
+          s.noise[static_cast<std::size_t>(it - s.noise_factors.begin())].identify(
+              statistic, s.kind, tau.m, s.tau0_s);
       const std::int64_t averages = (N - 1) / tau.m;
       if (!curve.points.empty() && averages <= stream_kept_noise_threshold(statistic)) {
         point.confidence.noise.alpha = curve.points.back().confidence.noise.alpha;

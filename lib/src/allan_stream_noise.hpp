@@ -1,7 +1,11 @@
 #pragma once
-// Internal (allan_stream.cpp): the one-pass noise identification state of the stream mode: sums
-// of a series and of its lag-1 products, for the series differenced 0..3 times, from which the
-// lag-1 autocorrelation of each is formed at the end (Riley & Greenhall 2004).
+// Internal (allan_stream*.cpp): the one-pass noise identification of the stream mode. For each
+// averaging factor m the series z at m (confidence.cpp's series_at: m-sample means for rate and
+// increment input, the phase decimated to m for phase input) is fed once; for z differenced
+// 0..3 times, sums of the values and of their squares and lag-1 products are kept, from which
+// the lag-1 autocorrelation is formed at the end (Riley & Greenhall 2004), as identify_noise
+// does on the whole series. While fewer than kMinAcfPoints values exist, the B1 ratio of the
+// first few values decides (as compute_allan_curve does on a short series).
 
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +14,8 @@
 #include <vector>
 
 #include "allan_dd.hpp"
+#include "sigmatau/allan.hpp"
+#include "sigmatau/confidence.hpp"
 
 namespace sigmatau::detail {
 
@@ -37,29 +43,61 @@ struct UninitialisedAllocator : std::allocator<T> {
 /// Buffer of doubles that resize() does not zero-fill.
 using Doubles = std::vector<double, UninitialisedAllocator<double>>;
 
-/// Sums of a series and of its lag-1 products, with the first value subtracted (a shift changes
-/// no autocorrelation, and it keeps a drifting series from cancelling). Each block is summed in
-/// kLanes plain-double lanes and carried in double-double.
+/// Sums of one series and of its lag-1 products, with the series' first value subtracted (a
+/// shift changes no autocorrelation, and it keeps a drifting series from cancelling).
 struct AcfSums {
-  std::int64_t n = 0;
-  double shift = 0, first = 0, last = 0;
-  DoubleDouble s1, s2, s12;
-  /// Adds a[0..len).
-  void add_block(const double* a, std::size_t len);
+  std::int64_t n = 0;  ///< values so far
+  double shift = 0;    ///< the first value
+  double last = 0;     ///< the last value minus shift (the first one minus shift is 0)
+  DoubleDouble s1, s2, s12;  ///< sum of b, of b^2, of b_{i-1} b_i (b = value - shift)
   /// Lag-1 autocorrelation (Riley & Greenhall 2004 eq. 2) from the sums; NaN if constant.
   double r1() const;
 };
 
+/// Fewest points at m for the lag-1 ACF (confidence.cpp, Riley & Greenhall 2004).
+constexpr std::int64_t kMinAcfPoints = 30;
+
 /// Noise identification state of one averaging factor.
-struct NoiseState {
-  AcfSums sums[4];           ///< z differenced 0..3 times
-  double previous[4] = {};   ///< last value of each differenced series
-  std::vector<double> kept;  ///< the first values of x[k m] (B1 ratio, while few exist)
-  std::int64_t next_k = 0;   ///< next k whose x[k m] is read
-  Doubles batch;  ///< new z values of the current chunk
-  Doubles spare;  ///< scratch of flush()
-  /// Adds the batch to the sums of each difference order, then clears it.
-  void flush();
+class NoiseSums {
+ public:
+  /// Series summed: z differenced 0 .. orders - 1 times (orders 3 for Allan-type statistics,
+  /// 4 when a Hadamard one is computed: identify() differences at most d_max times).
+  explicit NoiseSums(int orders);
+
+  /// Adds z values to the sums: buffer[kHistory .. kHistory + count) holds them, and add()
+  /// writes the last kHistory earlier values to buffer[0 .. kHistory) (its own scratch).
+  void add(double* buffer, std::size_t count);
+  /// Carries the plain-double lane sums into the double-double sums (after each chunk: bounds
+  /// the length of every plain-double sum to a chunk's values / kLanes).
+  void carry();
+
+  /// Keeps x[k m] (the phase at multiples of m, rounded to double) while the B1 ratio may
+  /// still need it.
+  void keep(double x) {
+    if (static_cast<std::int64_t>(kept_.size()) <= kMinAcfPoints) kept_.push_back(x);
+  }
+  bool wants_kept() const { return static_cast<std::int64_t>(kept_.size()) <= kMinAcfPoints; }
+
+  /// The noise at this m for `statistic` (difference order as identify_noise), from data of
+  /// `kind` at sample interval tau0_s [s].
+  NoiseIdentification identify(Statistic statistic, DataKind kind, std::int64_t m,
+                                double tau0_s) const;
+
+  std::int64_t next_k = 0;  ///< next k whose x[k m] is read
+  std::size_t memory_bytes() const;
+
+  static constexpr int kLanes = 8;
+  /// Earlier z values a new value needs: z differenced 3 times, and its lag-1 product.
+  static constexpr std::size_t kHistory = 4;
+
+ private:
+  int orders_;
+  std::int64_t count_ = 0;  ///< z values so far
+  AcfSums sums_[4];
+  double lanes_[4][3][kLanes] = {};  ///< per series: s1, s2, s12 lanes since the last carry()
+  bool pending_ = false;             ///< lanes hold something not yet carried
+  double history_[kHistory] = {};    ///< the last kHistory z values (oldest first)
+  std::vector<double> kept_;
 };
 
 }  // namespace sigmatau::detail
