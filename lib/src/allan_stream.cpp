@@ -38,7 +38,7 @@ using detail::NoiseSums;
 using detail::StridedTerms;
 
 /// Samples per internal chunk: level-0 buffers hold about this many points.
-constexpr std::int64_t kChunk = 65536;
+constexpr std::int64_t kChunk = 16384;
 /// Largest averaging factor prepared (2^40 samples: 35 years at 1 kHz).
 constexpr std::int64_t kMaxFactor = std::int64_t{1} << 40;
 /// Largest lag q = m / s in stride units: taus without a large power-of-two factor (e.g. an
@@ -164,11 +164,8 @@ struct AllanStream::Impl {
             out[j] = xh[u] + xl[u];
           }
         } else if (q == 1) {  // the common case (octave factors): contiguous, vectorised
-          const double* h1 = xh + (k - b);
-          const double* l1 = xl + (k - b);
-          for (std::int64_t j = 0; j < count; ++j) {
-            out[j] = ((h1[j] - h1[j - 1]) + (l1[j] - l1[j - 1])) * inv_m;
-          }
+          detail::mean_rates(xh + (k - b), xl + (k - b), static_cast<std::size_t>(count), inv_m,
+                             out);
         } else {
           for (std::int64_t j = 0; j < count; ++j) {
             const std::int64_t u = (k + j) * q - b;

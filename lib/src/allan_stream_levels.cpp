@@ -4,7 +4,17 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "simd_clones.hpp"
+
 namespace sigmatau::detail {
+namespace {
+
+/// dst[c] = src[2 c] for c < n.
+SIGMATAU_SIMD_CLONES void every_second(const double* src, std::size_t n, double* dst) {
+  for (std::size_t c = 0; c < n; ++c) dst[c] = src[2 * c];
+}
+
+}  // namespace
 
 void distribute_points(std::vector<Level>& levels, std::int64_t points, std::int64_t count,
                        bool with_p) {
@@ -12,9 +22,7 @@ void distribute_points(std::vector<Level>& levels, std::int64_t points, std::int
   auto take = [](Doubles& to, const Doubles& from, std::int64_t at, std::size_t n) {
     const std::size_t old = to.size();
     to.resize(old + n);
-    const double* src = from.data() + at;
-    double* dst = to.data() + old;
-    for (std::size_t c = 0; c < n; ++c) dst[c] = src[2 * c];
+    every_second(from.data() + at, n, to.data() + old);
   };
   for (std::size_t j = 1; j < levels.size(); ++j) {
     const Level& below = levels[j - 1];

@@ -117,6 +117,11 @@ int noise_order(Statistic s) { return (s == Statistic::hdev || s == Statistic::o
 
 }  // namespace
 
+SIGMATAU_SIMD_CLONES void mean_rates(const double* h, const double* l, std::size_t count,
+                                     double inv_m, double* out) {
+  for (std::size_t j = 0; j < count; ++j) out[j] = ((h[j] - h[j - 1]) + (l[j] - l[j - 1])) * inv_m;
+}
+
 double AcfSums::r1() const {
   if (n < 2) return std::numeric_limits<double>::quiet_NaN();
   using ld = long double;

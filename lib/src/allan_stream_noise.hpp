@@ -54,6 +54,10 @@ struct AcfSums {
   double r1() const;
 };
 
+/// out[j] = ((h[j] - h[j-1]) + (l[j] - l[j-1])) * inv_m for j < count: the m-sample means z
+/// from the double-double phase at multiples of m (h, l; h[-1], l[-1] readable).
+void mean_rates(const double* h, const double* l, std::size_t count, double inv_m, double* out);
+
 /// Fewest points at m for the lag-1 ACF (confidence.cpp, Riley & Greenhall 2004).
 constexpr std::int64_t kMinAcfPoints = 30;
 

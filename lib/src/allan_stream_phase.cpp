@@ -21,6 +21,9 @@
 namespace sigmatau::detail {
 namespace {
 
+/// Values integrated per pass.
+constexpr std::size_t kTile = 1024;
+
 /// s[i] + e[i] = y[i] - offset exactly (TwoSum); returns 0 if every s[i] is finite.
 SIGMATAU_SIMD_CLONES unsigned split_offset(const double* y, std::size_t n, double offset,
                                            double* s, double* e) {
@@ -87,21 +90,23 @@ bool StreamPhase::integrate(std::span<const double> y, std::int64_t samples_befo
   }
   double* h = nh + w;
   double* l = nl + w;
-  const unsigned bad = split_offset(y.data(), y.size(), offset_, h, l);
-  if (kind_ == DataKind::phase) return bad == 0;
-  // Runs end where the whole stream reaches a multiple of kRenormalise values.
+  if (kind_ == DataKind::phase) return split_offset(y.data(), y.size(), offset_, h, l) == 0;
+  // Pieces of at most kTile values (the three passes stay in the L1 cache), ending where the
+  // whole stream reaches a multiple of kRenormalise values.
+  unsigned bad = 0;
   std::size_t i = 0;
   while (i < y.size()) {
     const std::int64_t done = samples_before + static_cast<std::int64_t>(i);
-    const std::size_t run = std::min<std::size_t>(
-        y.size() - i, static_cast<std::size_t>(kRenormalise - done % kRenormalise));
-    carry(h + i, l + i, run, h_, l_);
-    renormalise(h + i, l + i, run);
-    if ((done + static_cast<std::int64_t>(run)) % kRenormalise == 0) {
-      h_ = h[i + run - 1];
-      l_ = l[i + run - 1];
+    const std::size_t len = std::min<std::size_t>(
+        {y.size() - i, kTile, static_cast<std::size_t>(kRenormalise - done % kRenormalise)});
+    bad |= split_offset(y.data() + i, len, offset_, h + i, l + i);
+    carry(h + i, l + i, len, h_, l_);
+    renormalise(h + i, l + i, len);
+    if ((done + static_cast<std::int64_t>(len)) % kRenormalise == 0) {
+      h_ = h[i + len - 1];
+      l_ = l[i + len - 1];
     }
-    i += run;
+    i += len;
   }
   return bad == 0 && (h_ * 0.0 == 0.0);
 }
