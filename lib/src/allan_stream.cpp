@@ -130,9 +130,23 @@ struct AllanStream::Impl {
     points += static_cast<std::int64_t>(count);
     samples += static_cast<std::int64_t>(y.size());
     detail::distribute_points(levels, points, static_cast<std::int64_t>(count), need_p);
-    for (auto& tau : taus) tau.run(levels[static_cast<std::size_t>(tau.level)]);
+    run_terms();
     feed_noise();
     trim();
+  }
+
+  /// Sums every term now complete: first the blocks that octave runs of taus on one level share,
+  /// then the rest tau by tau.
+  void run_terms() {
+    std::vector<StridedTerms*> on_level;
+    for (std::size_t j = 0; j < levels.size(); ++j) {
+      on_level.clear();
+      for (auto& tau : taus) {
+        if (static_cast<std::size_t>(tau.level) == j) on_level.push_back(&tau);
+      }
+      if (on_level.size() >= 2) detail::run_octave_blocks(on_level, levels[j]);
+    }
+    for (auto& tau : taus) tau.run(levels[static_cast<std::size_t>(tau.level)]);
   }
 
   void feed_noise() {

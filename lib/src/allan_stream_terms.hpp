@@ -8,6 +8,7 @@
 // ADEV and HDEV).
 
 #include <cstdint>
+#include <span>
 
 #include "allan_dd.hpp"
 #include "allan_stream_levels.hpp"
@@ -31,5 +32,12 @@ struct StridedTerms {
   /// the next point; sums them into *this without changing the level.
   void finish_running_sum(const Level& source, DoubleDouble p_total, std::int64_t points);
 };
+
+/// Runs the full term blocks that the overlapping Allan estimators (order 2, step 1, not on P)
+/// among `taus`, all on level `source`, have in common: taus whose next terms end at the same
+/// point and whose lags are q, 2q, 4q, ... are summed together, each phase point loaded once
+/// for all of them (a term block of each tau is summed exactly as StridedTerms::run sums it, so
+/// the sums are the same bit for bit). Every tau's remaining terms are left to run().
+void run_octave_blocks(std::span<StridedTerms* const> taus, const Level& source);
 
 }  // namespace sigmatau::detail
