@@ -2,7 +2,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cctype>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +9,7 @@
 #include <sstream>
 
 #include "log_options.hpp"
+#include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/allan_segments.hpp"
@@ -46,60 +46,6 @@ EdfModel parse_edf_model(const std::string& name) {
   if (name == "greenhall") return EdfModel::greenhall;
   if (name == "discrete") return EdfModel::discrete;
   throw Error("--edf must be greenhall or discrete, got \"" + name + "\"");
-}
-
-/// Bytes from "1GiB", "512MiB", "800M", "2G", "123456" (K/M/G/T decimal, Ki/Mi/Gi/Ti binary,
-/// an optional trailing B). Throws Error naming the option otherwise.
-std::int64_t parse_bytes(const std::string& text) {
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  std::string suffix = text.substr(used);
-  if (!suffix.empty() && (suffix.back() == 'B' || suffix.back() == 'b')) suffix.pop_back();
-  double factor = 0;
-  if (suffix.empty()) factor = 1;
-  if (suffix == "K" || suffix == "k") factor = 1e3;
-  if (suffix == "M") factor = 1e6;
-  if (suffix == "G") factor = 1e9;
-  if (suffix == "T") factor = 1e12;
-  if (suffix == "Ki") factor = 1024.0;
-  if (suffix == "Mi") factor = 1024.0 * 1024;
-  if (suffix == "Gi") factor = 1024.0 * 1024 * 1024;
-  if (suffix == "Ti") factor = 1024.0 * 1024 * 1024 * 1024;
-  if (used == 0 || !(factor > 0) || !(value > 0) || !std::isfinite(value)) {
-    throw Error("--memory must be a size such as 1GiB, 512MiB or 800M, got \"" + text + "\"");
-  }
-  return static_cast<std::int64_t>(value * factor);
-}
-
-/// Bytes the exact in-memory mode needs per sample and channel: the raw value (8) while reading,
-/// then the double-double phase (16) and the sweep copy (8) that each series keeps.
-constexpr std::int64_t kExactBytesPerSample = 32;
-
-/// Values (samples x channels) a seekable input file holds, estimated from its size: exact for
-/// raw binary, at least bytes / 4 for text (a value and its delimiter take >= 4 bytes in
-/// practice), bytes / kBagBytesPerValue for a ROS bag, -1 for stdin, a rosbag2 folder or when the
-/// size is unknown. Gzip files are counted as stored.
-/// Bag bytes per Imu value assumed: an uncompressed sensor_msgs/Imu message takes 300-400 bytes
-/// with its record header (covariances included) for six values, about 60 per value; 16 leaves
-/// room for chunks compressed up to ~4x (lz4 and zstd do 2-3x on Imu messages), so a bag goes
-/// out of core early rather than overrunning --memory (out of core costs a second read pass).
-constexpr std::int64_t kBagBytesPerValue = 16;
-
-std::int64_t estimated_values(const LogArguments& log) {
-  if (log.input == "-") return -1;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(log.input, ec)) return -1;
-  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(log.input, ec));
-  if (ec) return -1;
-  if (is_bag_path(log.input)) return bytes / kBagBytesPerValue;
-  if (log.binary.empty()) return bytes / 4;
-  const std::int64_t size = log.binary == "i16" ? 2 : (log.binary == "f64" ? 8 : 4);
-  return bytes / size;
 }
 
 /// Exact curves from a log larger than --memory: the phase goes to temporary files (TMPDIR) and

@@ -3,13 +3,16 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "log_options.hpp"
+#include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
+#include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
@@ -27,6 +30,7 @@ struct FitArguments {
   std::string output;
   bool force = false;
   unsigned threads = 0;
+  std::string memory = "4GiB";
 };
 
 /// Bytes read from the start of INPUT to tell a saved JSON result from a log.
@@ -218,6 +222,73 @@ std::string sniff(const std::string& path) {
   return head;
 }
 
+/// The sensor that --unit names (its dimension, per second for increments and phase), or
+/// nullopt without --unit. Throws Error when the unit is neither a rate nor an acceleration.
+std::optional<Sensor> sensor_from_unit(const LoadedChannels& unit) {
+  if (unit.unit.empty()) return std::nullopt;
+  Dimension d = unit.dimension;
+  if (unit.kind != DataKind::rate) d.time2 -= 2;
+  if (d == dim::angular_rate) return Sensor::gyro;
+  if (d == dim::acceleration) return Sensor::accel;
+  throw Error("--unit " + unit.unit + " (--kind " + std::string(to_string(unit.kind)) +
+              ") is neither an angular rate nor an acceleration");
+}
+
+/// The OADEV curve (octave taus, 68.3 % intervals) of every channel of a log, and what the fit
+/// needs to know of the series behind it.
+struct LogCurves {
+  std::vector<std::string> channel_names;
+  std::vector<AllanCurve> curves;
+  CurveSource source;
+};
+
+LogCurves oadev_in_memory(const LogArguments& log_args, unsigned threads) {
+  LoadedChannels loaded = load_channels(log_args);
+  std::vector<PhaseSeries> series;
+  for (auto& channel : loaded.log.channels) {
+    series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+    std::vector<double>().swap(channel);
+  }
+  LogCurves out;
+  out.channel_names = std::move(loaded.log.channel_names);
+  for (auto& curve : compute_allan_curves(series, {Statistic::oadev}, TauSpec{}, 0.683, threads)) {
+    out.curves.push_back(std::move(curve.front()));
+  }
+  out.source = CurveSource{series.front().tau0_s(), series.front().size(), 0};
+  return out;
+}
+
+/// The same curves, bit for bit, from a file larger than --memory: exact out of core (the phase
+/// in temporary files, the file read twice per group of --threads channels), as `adev` does.
+LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
+  std::cerr << "sigmatau: " << log_args.input
+            << " needs more than --memory in memory; computing the OADEV curves exactly out of "
+               "core (temporary files in "
+            << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
+  const LogOptions options = log_options_from(log_args);
+  LoadedChannels unit;
+  set_input_unit(log_args, unit);
+  Progress progress;
+  OutOfCoreSettings settings;
+  settings.threads = threads;
+  settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+  OutOfCoreResult result = compute_allan_curves_out_of_core(
+      options, unit.kind, unit.to_si,
+      [&](const TimingReport& timing) {
+        return resolve_rate_hz(log_args.rate_hz, timing, log_args.input);
+      },
+      {Statistic::oadev}, TauSpec{}, 0.683, settings);
+  progress.finish();
+  note_reading(log_args, options, result.timing);
+  LogCurves out;
+  out.channel_names = std::move(result.channel_names);
+  for (auto& curve : result.curves) out.curves.push_back(std::move(curve.front()));
+  // N phase points: one more than the samples for rate and increment input.
+  const std::int64_t points = unit.kind == DataKind::phase ? result.samples : result.samples + 1;
+  out.source = CurveSource{1.0 / result.rate_hz, points, 0};
+  return out;
+}
+
 void run_fit(const FitArguments& args) {
   FitOptions options;
   options.method = parse_fit_method(args.method);
@@ -248,32 +319,20 @@ void run_fit(const FitArguments& args) {
       channels.push_back(std::move(c));
     }
   } else {
-    LoadedChannels loaded = load_channels(args.log);
-    std::optional<Sensor> from_unit;
-    if (!loaded.unit.empty()) {
-      Dimension d = loaded.dimension;
-      if (loaded.kind != DataKind::rate) d.time2 -= 2;
-      if (d == dim::angular_rate) from_unit = Sensor::gyro;
-      if (d == dim::acceleration) from_unit = Sensor::accel;
-      if (!from_unit) {
-        throw Error("--unit " + loaded.unit + " (--kind " + std::string(to_string(loaded.kind)) +
-                    ") is neither an angular rate nor an acceleration");
-      }
-    }
-    std::vector<PhaseSeries> series;
-    for (auto& channel : loaded.log.channels) {
-      series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
-      std::vector<double>().swap(channel);
-    }
-    const auto curves =
-        compute_allan_curves(series, {Statistic::oadev}, TauSpec{}, 0.683, args.threads);
-    for (std::size_t i = 0; i < series.size(); ++i) {
+    // The sensor from --unit is checked before the log is read.
+    LoadedChannels unit_only;
+    set_input_unit(args.log, unit_only);
+    const std::optional<Sensor> from_unit = sensor_from_unit(unit_only);
+    const std::int64_t memory = parse_bytes(args.memory);
+    LogCurves log = exact_needs_out_of_core(args.log, memory)
+                        ? oadev_out_of_core(args.log, args.threads)
+                        : oadev_in_memory(args.log, args.threads);
+    for (std::size_t i = 0; i < log.curves.size(); ++i) {
       Channel c;
-      c.name = loaded.log.channel_names[i];
+      c.name = log.channel_names[i];
       c.sensor = sensor_of(c.name, from_unit);
-      const CurveSource source{series[i].tau0_s(), series[i].size(), 0};
       try {
-        c.fit = fit_noise(curves[i].front(), source, options);
+        c.fit = fit_noise(log.curves[i], log.source, options);
       } catch (const Error& e) {
         throw Error(args.log.input + ": channel " + c.name + ": " + e.what());
       }
@@ -318,6 +377,10 @@ void add_fit_command(CLI::App& app) {
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");
   command->add_option("--threads", args->threads, "worker threads for the curves (0: one per core)")
+      ->capture_default_str();
+  command->add_option("--memory", args->memory,
+                      "memory for the exact OADEV curves, e.g. 1GiB: larger files are computed "
+                      "out of core (the same numbers, as `adev` does)")
       ->capture_default_str();
   command->callback([args] { run_fit(*args); });
 }

@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "log_options.hpp"
+#include "memory_budget.hpp"
+#include "psd_stream.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/plot.hpp"
@@ -33,20 +35,8 @@ struct PsdArguments {
   std::string out_unit;
   bool force = false;
   std::string plot;
+  std::string memory = "1GiB";
 };
-
-/// The rate series of a channel (in SI when --unit was given): increments / tau0, phase
-/// differenced / tau0.
-std::vector<double> rate_samples(std::vector<double> values, DataKind kind, double rate_hz) {
-  if (kind == DataKind::increment) {
-    for (double& v : values) v *= rate_hz;
-  } else if (kind == DataKind::phase) {
-    if (values.size() < 2) throw Error("phase input needs at least two samples");
-    for (std::size_t i = 0; i + 1 < values.size(); ++i) values[i] = (values[i + 1] - values[i]) * rate_hz;
-    values.pop_back();
-  }
-  return values;
-}
 
 std::optional<std::pair<double, double>> parse_band(const std::string& text) {
   if (text.empty()) return std::nullopt;
@@ -121,15 +111,21 @@ void run_psd(const PsdArguments& args) {
     check_can_write(args.plot, args.force);
   }
 
-  LoadedChannels loaded = load_channels(args.log);
+  const std::int64_t memory = parse_bytes(args.memory);
+  {
+    LoadedChannels unit_only;  // --kind, --unit and --out-unit are checked before reading
+    set_input_unit(args.log, unit_only);
+    density_unit(unit_only, args.out_unit);
+  }
+
+  LogPsd computed = log_psd(args.log, options, memory);
+  const LoadedChannels& loaded = computed.input;
   const DensityUnit unit = density_unit(loaded, args.out_unit);
 
   std::vector<PsdCurve> curves;
   std::vector<PsdCurve> plotted;  // log-binned for the plot
   std::vector<NoiseDensity> densities;
-  for (auto& channel : loaded.log.channels) {
-    const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
-    PsdCurve psd = welch_psd(rate, loaded.rate_hz, options);
+  for (PsdCurve& psd : computed.curves) {
     densities.push_back(noise_density(psd, band, args.ci));
     if (!args.plot.empty()) plotted.push_back(log_binned(psd, kPlotBinsPerDecade));
     curves.push_back(args.bins_per_decade > 0 ? log_binned(psd, args.bins_per_decade) : std::move(psd));
@@ -262,6 +258,11 @@ void add_psd_command(CLI::App& app) {
   command->add_option("--plot", args->plot, "also plot the PSD to FILE (.svg, .png or .pdf)");
   command->add_option("--out-unit", args->out_unit,
                       "unit of the noise density, e.g. deg/s/sqrt(Hz), deg/sqrt(h), ug/sqrt(Hz)");
+  command->add_option("--memory", args->memory,
+                      "most samples held while the default --segment cannot be chosen yet (it "
+                      "depends on the log's length); a longer file is counted first, a longer "
+                      "pipe needs --segment. The PSD itself is computed segment by segment")
+      ->capture_default_str();
   command->callback([args] { run_psd(*args); });
 }
 

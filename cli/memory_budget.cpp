@@ -1,0 +1,66 @@
+#include "memory_budget.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/log_reader.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+/// Bag bytes per Imu value assumed: an uncompressed sensor_msgs/Imu message takes 300-400 bytes
+/// with its record header (covariances included) for six values, about 60 per value; 16 leaves
+/// room for chunks compressed up to ~4x (lz4 and zstd do 2-3x on Imu messages), so a bag goes
+/// out of core early rather than overrunning --memory (out of core costs a second read pass).
+constexpr std::int64_t kBagBytesPerValue = 16;
+
+}  // namespace
+
+std::int64_t parse_bytes(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::string suffix = text.substr(used);
+  if (!suffix.empty() && (suffix.back() == 'B' || suffix.back() == 'b')) suffix.pop_back();
+  double factor = 0;
+  if (suffix.empty()) factor = 1;
+  if (suffix == "K" || suffix == "k") factor = 1e3;
+  if (suffix == "M") factor = 1e6;
+  if (suffix == "G") factor = 1e9;
+  if (suffix == "T") factor = 1e12;
+  if (suffix == "Ki") factor = 1024.0;
+  if (suffix == "Mi") factor = 1024.0 * 1024;
+  if (suffix == "Gi") factor = 1024.0 * 1024 * 1024;
+  if (suffix == "Ti") factor = 1024.0 * 1024 * 1024 * 1024;
+  if (used == 0 || !(factor > 0) || !(value > 0) || !std::isfinite(value)) {
+    throw Error("--memory must be a size such as 1GiB, 512MiB or 800M, got \"" + text + "\"");
+  }
+  return static_cast<std::int64_t>(value * factor);
+}
+
+std::int64_t estimated_values(const LogArguments& log) {
+  if (log.input == "-") return -1;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(log.input, ec)) return -1;
+  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(log.input, ec));
+  if (ec) return -1;
+  if (is_bag_path(log.input)) return bytes / kBagBytesPerValue;
+  if (log.binary.empty()) return bytes / 4;
+  const std::int64_t size = log.binary == "i16" ? 2 : (log.binary == "f64" ? 8 : 4);
+  return bytes / size;
+}
+
+bool exact_needs_out_of_core(const LogArguments& log, std::int64_t memory_bytes) {
+  const bool has_time = !log.time_column.empty() || is_bag_path(log.input);
+  if (has_time && (log.gaps == "split" || log.gaps == "fill")) return false;
+  const std::int64_t values = estimated_values(log);
+  return values >= 0 && values > memory_bytes / kExactBytesPerSample;
+}
+
+}  // namespace sigmatau::cli

@@ -1,0 +1,272 @@
+#include "psd_stream.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <system_error>
+#include <utility>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/log_reader.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+/// Stamps after which TimingReport::rate_hz is final: the nominal interval is the median of the
+/// first 100000 intervals (log_reader.hpp, TimingReport).
+constexpr std::int64_t kRateStamps = 100001;
+
+/// Read passes at most (the first, a count of rows, one more when a stated count was wrong):
+/// a file that keeps changing length between passes is an Error rather than a loop.
+constexpr int kMaxPasses = 3;
+
+/// Rate samples of a log of `rows` rows: a phase log has one fewer.
+std::int64_t rate_count(std::int64_t rows, DataKind kind) {
+  if (kind != DataKind::phase) return rows;
+  return rows > 0 ? rows - 1 : 0;
+}
+
+/// The smallest sample count whose default segment length is the longest one
+/// default_segment_length gives (2^23 for its cap of 2^20): from there on the length no longer
+/// depends on the count. Found by bisection so that it follows psd.cpp's rule.
+std::int64_t saturation_samples() {
+  std::int64_t high = std::numeric_limits<std::int64_t>::max() / 4;
+  const std::int64_t longest = default_segment_length(high);
+  std::int64_t low = 0;  // default_segment_length(low) < longest, or low = 0
+  while (high - low > 1) {
+    const std::int64_t mid = low + (high - low) / 2;
+    (default_segment_length(mid) == longest ? high : low) = mid;
+  }
+  return high;
+}
+
+/// Whether the input can be read a second time (a file or a rosbag2 folder, not a pipe).
+bool rereadable(const std::string& path) {
+  if (path == "-") return false;
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec) || std::filesystem::is_directory(path, ec);
+}
+
+bool gzip_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[2] = {0, 0};
+  in.read(reinterpret_cast<char*>(magic), 2);
+  return in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+}
+
+/// Rows the input says it holds before it is read, -1 when it does not: a raw binary file
+/// (uncompressed) from its size, a ROS bag read without --topic from its index or summary.
+std::int64_t stated_rows(const LogOptions& options, const TimingReport& opened) {
+  if (!opened.bag_topic.empty()) {
+    for (const BagTopic& topic : opened.bag_topics) {
+      if (topic.name == opened.bag_topic) return topic.messages;
+    }
+    return -1;
+  }
+  if (options.binary == BinaryFormat::none || !rereadable(options.path)) return -1;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(options.path, ec) || gzip_file(options.path)) return -1;
+  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(options.path, ec));
+  if (ec) return -1;
+  const std::int64_t value_bytes = options.binary == BinaryFormat::i16   ? 2
+                                   : options.binary == BinaryFormat::f64 ? 8
+                                                                          : 4;
+  return std::max<std::int64_t>(0, bytes - options.skip_bytes) /
+         (value_bytes * options.binary_channels);
+}
+
+/// Rows of the input, read through once (a counting pass).
+std::int64_t count_rows(const LogOptions& options) {
+  LogReader reader(options);
+  SampleBlock block;
+  Progress progress;
+  while (reader.read_block(block)) progress.update(reader.bytes_read(), reader.total_bytes());
+  progress.finish();
+  return reader.timing().samples;
+}
+
+/// The rate series of one channel, fed to its Welch accumulator with the arithmetic of the
+/// in-memory path (value x to_si, then increment x rate or (x[i+1] - x[i]) x rate).
+class ChannelFeed {
+ public:
+  ChannelFeed(double rate_hz, const WelchOptions& welch, DataKind kind, double to_si)
+      : accumulator_(rate_hz, welch), rate_hz_(rate_hz), kind_(kind), to_si_(to_si) {}
+
+  void add(std::vector<double>& values) {
+    if (to_si_ != 1.0) {
+      for (double& v : values) v *= to_si_;
+    }
+    if (kind_ == DataKind::increment) {
+      for (double& v : values) v *= rate_hz_;
+    } else if (kind_ == DataKind::phase) {
+      differences_.clear();
+      for (const double x : values) {
+        if (has_previous_) differences_.push_back((x - previous_) * rate_hz_);
+        previous_ = x;
+        has_previous_ = true;
+      }
+      accumulator_.add(differences_);
+      return;
+    }
+    accumulator_.add(values);
+  }
+
+  PsdCurve result() const { return accumulator_.result(); }
+
+ private:
+  WelchAccumulator accumulator_;
+  double rate_hz_;
+  DataKind kind_;
+  double to_si_;
+  bool has_previous_ = false;
+  double previous_ = 0;
+  std::vector<double> differences_;
+};
+
+/// The rate series of a channel in memory (in SI when --unit was given).
+std::vector<double> rate_samples(std::vector<double> values, DataKind kind, double rate_hz) {
+  if (kind == DataKind::increment) {
+    for (double& v : values) v *= rate_hz;
+  } else if (kind == DataKind::phase) {
+    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+      values[i] = (values[i + 1] - values[i]) * rate_hz;
+    }
+    values.pop_back();
+  }
+  return values;
+}
+
+void check_phase_length(DataKind kind, std::int64_t rows) {
+  if (kind == DataKind::phase && rows < 2) throw Error("phase input needs at least two samples");
+}
+
+/// --gaps fill: the whole log in memory (fill_gaps), then welch_psd per channel.
+LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
+  LogPsd out;
+  out.input = load_channels(args);
+  LoadedChannels& loaded = out.input;
+  check_phase_length(loaded.kind, static_cast<std::int64_t>(loaded.log.channels.front().size()));
+  for (auto& channel : loaded.log.channels) {
+    const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
+    std::vector<double>().swap(channel);
+    out.curves.push_back(welch_psd(rate, loaded.rate_hz, welch));
+  }
+  return out;
+}
+
+/// One read pass. Returns the PSDs, or nullopt with `recount` set to the rows read when the
+/// segment length came from a stated row count that turned out to choose another length.
+std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& options,
+                                  const WelchOptions& welch, std::int64_t memory_bytes,
+                                  std::optional<std::int64_t> known_rows,
+                                  std::int64_t& recount) {
+  LogReader reader(options);
+  LogPsd out;
+  LoadedChannels& input = out.input;
+  set_input_unit(args, input);
+  input.log.path = options.path;
+  input.log.channel_names = reader.channel_names();
+  const std::size_t channels = input.log.channel_names.size();
+  const DataKind kind = input.kind;
+
+  // The segment length when it is known before the end; `checked` when it rests on a count the
+  // input stated, to be compared with the rows actually read.
+  std::int64_t length = welch.segment_length;
+  bool checked = false;
+  if (length == 0 && known_rows) length = default_segment_length(rate_count(*known_rows, kind));
+  if (length == 0) {
+    const std::int64_t stated = stated_rows(options, reader.timing());
+    if (stated >= 0) {
+      length = default_segment_length(rate_count(stated, kind));
+      checked = true;
+    }
+  }
+  const bool rate_from_time = !args.rate_hz && reader.has_time();
+  const std::int64_t saturated = saturation_samples();
+  const std::int64_t held_limit =
+      std::max<std::int64_t>(1, memory_bytes / static_cast<std::int64_t>(8 * channels));
+
+  std::vector<std::vector<double>> held(channels);
+  std::int64_t rows = 0;
+  std::vector<ChannelFeed> feeds;
+  const auto start = [&](std::int64_t segment_length) {
+    input.rate_hz = resolve_rate_hz(args.rate_hz, reader.timing(), args.input);
+    WelchOptions fixed = welch;
+    fixed.segment_length = segment_length;
+    feeds.reserve(channels);
+    for (std::size_t c = 0; c < channels; ++c) {
+      feeds.emplace_back(input.rate_hz, fixed, kind, input.to_si);
+      feeds.back().add(held[c]);
+      std::vector<double>().swap(held[c]);
+    }
+  };
+
+  SampleBlock block;
+  Progress progress;
+  while (reader.read_block(block)) {
+    rows += block.rows();
+    progress.update(reader.bytes_read(), reader.total_bytes());
+    if (!feeds.empty()) {
+      for (std::size_t c = 0; c < channels; ++c) feeds[c].add(block.values[c]);
+      continue;
+    }
+    for (std::size_t c = 0; c < channels; ++c) {
+      held[c].insert(held[c].end(), block.values[c].begin(), block.values[c].end());
+    }
+    if (rate_from_time && rows < kRateStamps) continue;  // the rate is not final yet
+    if (length > 0) {
+      start(length);
+    } else if (rate_count(rows, kind) >= saturated) {
+      start(default_segment_length(saturated));
+    } else if (rows > held_limit) {
+      if (!rereadable(options.path)) {
+        throw Error(std::string(options.path == "-" ? "<stdin>" : options.path) +
+                    ": more than --memory holds before the default segment length can be chosen "
+                    "(it depends on the length of the log, which a pipe does not tell): give "
+                    "--segment N or a larger --memory");
+      }
+      progress.finish();
+      const std::int64_t total = count_rows(options);
+      length = default_segment_length(rate_count(total, kind));
+      checked = true;
+      start(length);
+    }
+  }
+  progress.finish();
+  input.log.timing = reader.timing();
+  if (rows == 0) {
+    throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                     "no samples: the input holds no data rows");
+  }
+  check_phase_length(kind, rows);
+  if (feeds.empty()) {
+    // The log ended within the held blocks: its length is known.
+    start(welch.segment_length > 0 ? welch.segment_length
+                                   : default_segment_length(rate_count(rows, kind)));
+  } else if (checked && default_segment_length(rate_count(rows, kind)) != length) {
+    recount = rows;
+    return std::nullopt;
+  }
+  for (const ChannelFeed& feed : feeds) out.curves.push_back(feed.result());
+  return out;
+}
+
+}  // namespace
+
+LogPsd log_psd(const LogArguments& args, const WelchOptions& welch, std::int64_t memory_bytes) {
+  const LogOptions options = log_options_from(args);
+  if (options.gaps == GapPolicy::fill) return in_memory_psd(args, welch);
+  std::optional<std::int64_t> known_rows;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    std::int64_t recount = 0;
+    if (auto psd = stream_pass(args, options, welch, memory_bytes, known_rows, recount)) {
+      note_reading(args, options, psd->input.log.timing);
+      return std::move(*psd);
+    }
+    known_rows = recount;
+  }
+  throw Error(args.input + ": the input changed length between read passes");
+}
+
+}  // namespace sigmatau::cli
