@@ -43,10 +43,25 @@ void run_calibrate(const CalibrateArguments& a) {
   if (!a.log.unit.empty())
     throw Error("calibrate: use --gyro-unit and --accel-unit instead of --unit");
   if (!a.output.empty()) check_can_write(a.output, a.force);
-  const LoadedChannels loaded = load_channels(a.log);
+  LoadedChannels loaded = load_channels(a.log);
   if (loaded.kind == DataKind::phase)
     throw Error("calibrate: --kind must be rate or increment");
-  const Log& log = loaded.log;
+  Log& log = loaded.log;
+  std::vector<double>().swap(log.t_s);  // calibrate works on sample indices / rate
+  // The columns move into the calibration input (no second copy of the log); a column named
+  // twice is copied from where it went.
+  std::vector<std::vector<double>*> moved_to(log.channels.size(), nullptr);
+  const auto take = [&](std::size_t column, std::vector<double>& into) {
+    if (moved_to[column]) {
+      into = *moved_to[column];
+    } else {
+      into = std::move(log.channels[column]);
+      moved_to[column] = &into;
+    }
+  };
+  const auto column_values = [&](std::size_t column) -> const std::vector<double>& {
+    return moved_to[column] ? *moved_to[column] : log.channels[column];
+  };
   const auto has = [&](const std::string& n) {
     for (const auto& c : log.channel_names)
       if (c == n) return true;
@@ -72,24 +87,31 @@ void run_calibrate(const CalibrateArguments& a) {
   const double accel_factor = parse_unit_as(accel_unit, accel_dim, "--accel-unit").factor;
   const auto accel_names = names(a.accel_columns, "a", "--accel");
   for (int i = 0; i < 3; ++i) {
-    in.accel[static_cast<std::size_t>(i)] =
-        log.channels[find_column(log, accel_names[static_cast<std::size_t>(i)], "--accel")];
-    for (double& v : in.accel[static_cast<std::size_t>(i)]) v *= accel_factor;
+    take(find_column(log, accel_names[static_cast<std::size_t>(i)], "--accel"),
+         in.accel[static_cast<std::size_t>(i)]);
   }
   const auto gyro_names = names(a.gyro_columns, "g", "--gyro");
+  double gyro_factor = 1;
   if (!a.gyro_columns.empty() || has(gyro_names[0])) {
-    const double gyro_factor = parse_unit_as(gyro_unit, gyro_dim, "--gyro-unit").factor;
+    gyro_factor = parse_unit_as(gyro_unit, gyro_dim, "--gyro-unit").factor;
     for (int i = 0; i < 3; ++i) {
-      in.gyro[static_cast<std::size_t>(i)] =
-          log.channels[find_column(log, gyro_names[static_cast<std::size_t>(i)], "--gyro")];
-      for (double& v : in.gyro[static_cast<std::size_t>(i)]) v *= gyro_factor;
+      take(find_column(log, gyro_names[static_cast<std::size_t>(i)], "--gyro"),
+           in.gyro[static_cast<std::size_t>(i)]);
     }
   }
   const std::string temp = a.temp_column.empty() ? "temp" : a.temp_column;
   if (!a.temp_column.empty() || has(temp)) {
-    const auto& column = log.channels[find_column(log, temp, "--temp-column")];
+    const auto& column = column_values(find_column(log, temp, "--temp-column"));
     const std::string unit = a.temp_unit;
+    in.temperature_k.reserve(column.size());
     for (double v : column) in.temperature_k.push_back(convert(v, unit, "K"));
+  }
+  for (auto& channel : log.channels) std::vector<double>().swap(channel);  // the columns not used
+  for (auto& axis : in.accel) {
+    for (double& v : axis) v *= accel_factor;
+  }
+  for (auto& axis : in.gyro) {
+    for (double& v : axis) v *= gyro_factor;
   }
   CalibrationOptions o;
   if (a.gravity && a.latitude_deg)
