@@ -132,6 +132,8 @@ void run_psd(const PsdArguments& args) {
   }
 
   std::ostringstream out;
+  std::string json_text;  // JSON is dumped straight into one string (a PSD of 2^20-sample
+                          // segments is ~40 MB of JSON per channel: no second copy in `out`)
   if (args.format == "json") {
     nlohmann::json doc;
     doc["tool"] = "sigmatau";
@@ -167,7 +169,8 @@ void run_psd(const PsdArguments& args) {
              {"edf", nd.edf},
              {"one_sided_asd", nd.one_sided_asd * unit.density_from_si}}}});
     }
-    out << doc.dump(1) << "\n";
+    json_text = doc.dump(1);
+    json_text += '\n';
   } else if (args.format == "csv") {
     out << "channel,frequency_hz,psd,edf,unit\n";
     for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -204,9 +207,9 @@ void run_psd(const PsdArguments& args) {
     }
   }
   if (args.output.empty()) {
-    std::cout << out.str();
+    std::cout << (args.format == "json" ? json_text : out.str());
   } else {
-    write_file_atomically(args.output, out.str(), args.force);
+    write_file_atomically(args.output, args.format == "json" ? json_text : out.str(), args.force);
   }
   if (!args.plot.empty()) {
     SpectrumPlot plot;
