@@ -126,6 +126,20 @@ std::vector<double> raw_means(const std::vector<std::span<const double>>& axes,
   return means;
 }
 
+/// Validates the inputs of the *_sums unit checks (see raw_means for the in-memory ones).
+void check_sums(std::size_t axes, const std::vector<std::string>& names, std::int64_t rows,
+                double to_si, std::size_t min_axes, std::size_t max_axes, const char* what) {
+  if (!(axes >= min_axes && axes <= max_axes) || names.size() != axes) {
+    throw Error(std::string(what) + " unit check: needs " + std::to_string(min_axes) + ".." +
+                std::to_string(max_axes) + " axes with one name each, got " +
+                std::to_string(axes) + " axes and " + std::to_string(names.size()) + " names");
+  }
+  if (!(to_si > 0 && std::isfinite(to_si))) {
+    throw Error(std::string(what) + " unit check: the unit factor must be > 0");
+  }
+  if (!(rows >= 1)) throw Error(std::string(what) + " unit check: the axes must be non-empty");
+}
+
 std::string join_names(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : "+") + n;
@@ -216,9 +230,27 @@ std::vector<DataWarning> check_runs(std::span<const double> values, const std::s
 std::optional<DataWarning> check_gyro_unit(const std::vector<std::span<const double>>& axes_si,
                                            const std::vector<std::string>& names,
                                            const std::string& declared_unit, double to_si) {
-  const std::vector<double> means = raw_means(axes_si, names, to_si, 1, 3, "gyro");
+  raw_means(axes_si, names, to_si, 1, 3, "gyro");  // validates
+  std::vector<double> sums;
+  for (const auto& a : axes_si) {
+    double sum = 0;
+    for (const double v : a) sum += v;
+    sums.push_back(sum);
+  }
+  return check_gyro_unit_sums(sums, static_cast<std::int64_t>(axes_si[0].size()), names,
+                              declared_unit, to_si);
+}
+
+std::optional<DataWarning> check_gyro_unit_sums(const std::vector<double>& sums_si,
+                                                std::int64_t rows,
+                                                const std::vector<std::string>& names,
+                                                const std::string& declared_unit, double to_si) {
+  check_sums(sums_si.size(), names, rows, to_si, 1, 3, "gyro");
   double raw = 0;
-  for (const double m : means) raw += m * m;
+  for (const double s : sums_si) {
+    const double m = s / static_cast<double>(rows) / to_si;
+    raw += m * m;
+  }
   raw = std::sqrt(raw);
   const double si = raw * to_si;
   if (!(si > kMaxStaticGyroRate)) return std::nullopt;  // NaN means cannot be judged: no warning
@@ -242,7 +274,14 @@ std::optional<DataWarning> check_accel_unit(const std::vector<std::span<const do
   for (std::size_t i = 0; i < n; ++i) {
     sum += std::hypot(axes_si[0][i], axes_si[1][i], axes_si[2][i]);
   }
-  const double si = sum / static_cast<double>(n);
+  return check_accel_unit_sums(sum, static_cast<std::int64_t>(n), names, declared_unit, to_si);
+}
+
+std::optional<DataWarning> check_accel_unit_sums(double norm_sum_si, std::int64_t rows,
+                                                 const std::vector<std::string>& names,
+                                                 const std::string& declared_unit, double to_si) {
+  check_sums(3, names, rows, to_si, 3, 3, "accelerometer");
+  const double si = norm_sum_si / static_cast<double>(rows);
   const double in_g = si / kStandardGravity;
   if (in_g >= kAccelNormLow && in_g <= kAccelNormHigh) return std::nullopt;
   if (!std::isfinite(in_g)) return std::nullopt;  // non-finite data are the reader's business
@@ -259,6 +298,74 @@ std::optional<DataWarning> check_accel_unit(const std::vector<std::span<const do
                                      : "the data look like " + w.likely_unit + ", not " +
                                            declared_unit);
   return w;
+}
+
+RunChecker::RunChecker(std::string channel, DataCheckOptions options)
+    : channel_(std::move(channel)), options_(options), lo_(INFINITY), hi_(-INFINITY) {
+  check_min_run(options.saturation_min_run, "saturation");
+  check_min_run(options.stuck_min_run, "stuck-sensor");
+  at_lo_ = make_warning(DataWarningKind::saturation, channel_, lo_);
+  at_hi_ = make_warning(DataWarningKind::saturation, channel_, hi_);
+  stuck_ = make_warning(DataWarningKind::stuck, channel_, 0.0);
+}
+
+void RunChecker::close_run() {
+  const std::int64_t length = row_ - run_start_;
+  if (length == 0) return;
+  const double v = run_value_;
+  // Every value of the run has been seen, so lo_ <= v <= hi_ here; a later, smaller minimum
+  // (larger maximum) resets the warning in add().
+  if (length >= options_.saturation_min_run) {
+    if (v == lo_) add_run(at_lo_, run_start_, length);
+    if (v == hi_) add_run(at_hi_, run_start_, length);
+  }
+  if (length >= options_.stuck_min_run) {
+    if (stuck_.runs == 0 || length > stuck_.longest_rows) stuck_.value = v;
+    add_run(stuck_, run_start_, length);
+  }
+}
+
+void RunChecker::add(std::span<const double> values) {
+  for (const double x : values) {
+    if (row_ == run_start_ || !(x == run_value_)) {  // NaN != NaN: never a run
+      close_run();
+      run_start_ = row_;
+      run_value_ = x;
+    }
+    if (std::isfinite(x)) {
+      if (x < lo_) {
+        lo_ = x;
+        at_lo_ = make_warning(DataWarningKind::saturation, channel_, lo_);
+      }
+      if (x > hi_) {
+        hi_ = x;
+        at_hi_ = make_warning(DataWarningKind::saturation, channel_, hi_);
+      }
+    }
+    ++row_;
+  }
+}
+
+std::vector<DataWarning> RunChecker::finish() {
+  close_run();
+  run_start_ = row_;
+  std::vector<DataWarning> out;
+  if (lo_ < hi_) {  // otherwise empty, all non-finite, or constant: no saturation
+    for (DataWarning* w : {&at_lo_, &at_hi_}) {
+      if (w->runs == 0) continue;
+      w->message = run_summary(*w, options_.saturation_min_run) + " at the channel " +
+                   (w == &at_lo_ ? "minimum " : "maximum ") + format_value(w->value) +
+                   " (saturation: the signal was clipped at the sensor's range)" +
+                   run_location(*w);
+      out.push_back(*w);
+    }
+  }
+  if (stuck_.runs > 0) {
+    stuck_.message = run_summary(stuck_, options_.stuck_min_run) + " (stuck sensor?), longest value " +
+                     format_value(stuck_.value) + run_location(stuck_);
+    out.push_back(stuck_);
+  }
+  return out;
 }
 
 }  // namespace sigmatau

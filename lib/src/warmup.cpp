@@ -7,20 +7,36 @@
 
 namespace sigmatau {
 
-WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channels, double rate_hz) {
+WarmupBlockSums::WarmupBlockSums(std::int64_t samples) {
+  const std::int64_t block = samples / kWarmupBlocks;
+  if (block < kMinBlockSamples) return;  // too short: no blocks, no detection
+  blocks_.block_samples = block;
+  blocks_.means.assign(kWarmupBlocks, 0.0);
+}
+
+void WarmupBlockSums::add(std::span<const double> values) {
+  const std::int64_t block = blocks_.block_samples;
+  if (block == 0) return;
+  const std::int64_t end = block * kWarmupBlocks;  // samples past the last block are not used
+  for (const double v : values) {
+    if (seen_ >= end) return;
+    sum_ += v;
+    ++seen_;
+    if (seen_ % block == 0) {
+      blocks_.means[static_cast<std::size_t>(seen_ / block - 1)] = sum_ / static_cast<double>(block);
+      sum_ = 0;
+    }
+  }
+}
+
+WarmupBlocks WarmupBlockSums::blocks() const { return blocks_; }
+
+WarmupDecision decide_warmup(const std::vector<WarmupBlocks>& channels, double rate_hz) {
   WarmupDecision decision;
   decision.reason = "no warm-up transient found";
   for (std::size_t c = 0; c < channels.size(); ++c) {
-    const auto& x = channels[c];
-    const auto n = static_cast<std::int64_t>(x.size());
-    const std::int64_t block = n / kWarmupBlocks;
-    if (block < kMinBlockSamples) continue;
-    std::vector<double> means(kWarmupBlocks);
-    for (int b = 0; b < kWarmupBlocks; ++b) {
-      double sum = 0;
-      for (std::int64_t i = b * block; i < (b + 1) * block; ++i) sum += x[i];
-      means[b] = sum / static_cast<double>(block);
-    }
+    const std::vector<double>& means = channels[c].means;
+    if (means.size() != static_cast<std::size_t>(kWarmupBlocks)) continue;
     std::vector<double> late(means.begin() + kWarmupBlocks / 2, means.end());
     const auto [lo, hi] = std::minmax_element(late.begin(), late.end());
     const double range = *hi - *lo;
@@ -31,7 +47,7 @@ WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channel
     while (settled < kWarmupBlocks && std::abs(means[settled] - level) > range) ++settled;
     const auto limit = static_cast<int>(kMaxTrimFraction * kWarmupBlocks);
     if (settled > limit) continue;  // longer than any warm-up: drift, keep it
-    const std::int64_t samples = settled * block;
+    const std::int64_t samples = settled * channels[c].block_samples;
     if (samples > decision.trim_samples) {
       decision.trim_samples = samples;
       decision.trim_s = static_cast<double>(samples) / rate_hz;
@@ -45,6 +61,16 @@ WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channel
     }
   }
   return decision;
+}
+
+WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channels, double rate_hz) {
+  std::vector<WarmupBlocks> blocks;
+  for (const auto& x : channels) {
+    WarmupBlockSums sums(static_cast<std::int64_t>(x.size()));
+    sums.add(x);
+    blocks.push_back(sums.blocks());
+  }
+  return decide_warmup(blocks, rate_hz);
 }
 
 }  // namespace sigmatau

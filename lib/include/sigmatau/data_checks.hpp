@@ -75,6 +75,45 @@ std::optional<DataWarning> check_stuck(std::span<const double> values, const std
 std::vector<DataWarning> check_runs(std::span<const double> values, const std::string& channel,
                                     const DataCheckOptions& options = {});
 
+/// check_runs on a channel delivered in pieces (a log read block by block): add() every value in
+/// order, then finish() returns what check_runs returns on the whole channel, bit for bit, in
+/// constant memory. Saturation runs are kept for the running minimum and maximum and dropped
+/// when a new extreme appears (every run at the final extreme comes after its first occurrence).
+class RunChecker {
+ public:
+  /// Throws Error like check_runs when a threshold is < 2.
+  explicit RunChecker(std::string channel, DataCheckOptions options = {});
+  void add(std::span<const double> values);
+  /// The warnings (saturation at the minimum, at the maximum, then stuck), as check_runs.
+  std::vector<DataWarning> finish();
+
+ private:
+  void close_run();
+  std::string channel_;
+  DataCheckOptions options_;
+  std::int64_t row_ = 0;        ///< rows seen
+  std::int64_t run_start_ = 0;  ///< row where the open run starts
+  double run_value_ = 0;        ///< value of the open run (its first value)
+  double lo_;                   ///< running finite minimum (+inf before the first)
+  double hi_;                   ///< running finite maximum (-inf before the first)
+  DataWarning at_lo_, at_hi_, stuck_;
+};
+
+/// check_gyro_unit from the per-axis sums of the SI values (taken in row order) over `rows`
+/// rows: the same result as check_gyro_unit on the axes, bit for bit. Throws Error for 0 or > 3
+/// sums, a name count that differs, rows < 1 or to_si not > 0.
+std::optional<DataWarning> check_gyro_unit_sums(const std::vector<double>& sums_si,
+                                                std::int64_t rows,
+                                                const std::vector<std::string>& names,
+                                                const std::string& declared_unit, double to_si);
+
+/// check_accel_unit from the sum over rows of the SI norm (std::hypot of the three axes, taken in
+/// row order) over `rows` rows: the same result as check_accel_unit, bit for bit. Throws Error
+/// unless there are 3 names, rows >= 1 and to_si > 0.
+std::optional<DataWarning> check_accel_unit_sums(double norm_sum_si, std::int64_t rows,
+                                                 const std::vector<std::string>& names,
+                                                 const std::string& declared_unit, double to_si);
+
 /// Declared-unit sanity of a static gyro: `axes_si` are 1..3 rate channels already converted to
 /// rad/s with `to_si` (the factor the declared unit `declared_unit` gave). Warns when the
 /// magnitude of the vector of per-axis means exceeds 0.5 rad/s; likely_unit is the first of

@@ -29,6 +29,34 @@ struct WarmupDecision {
 /// Looks for a settling transient at the start of each channel sampled at rate_hz.
 WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channels, double rate_hz);
 
+/// The block means of one channel, what the rule looks at (empty `means`: the channel is shorter
+/// than kWarmupBlocks x kMinBlockSamples and is not examined).
+struct WarmupBlocks {
+  std::int64_t block_samples = 0;  ///< samples per block = samples / kWarmupBlocks (rounded down)
+  std::vector<double> means;       ///< kWarmupBlocks block means [unit of the samples]
+};
+
+/// The block means of a channel whose samples arrive in pieces (a log read in blocks): give the
+/// channel's total length first, then add() every sample in order. means() equals what
+/// detect_warmup computes on the whole channel, bit for bit (the same sums in the same order).
+class WarmupBlockSums {
+ public:
+  /// `samples`: the channel's total length (known from an earlier pass).
+  explicit WarmupBlockSums(std::int64_t samples);
+  void add(std::span<const double> values);
+  /// The block means once every sample was added.
+  WarmupBlocks blocks() const;
+
+ private:
+  WarmupBlocks blocks_;
+  double sum_ = 0;
+  std::int64_t seen_ = 0;
+};
+
+/// detect_warmup's decision from every channel's block means (channel order kept: the reason
+/// names the first channel with the longest trim).
+WarmupDecision decide_warmup(const std::vector<WarmupBlocks>& channels, double rate_hz);
+
 /// Number of blocks the log is split into; fewer than kMinBlockSamples per block: no detection.
 inline constexpr int kWarmupBlocks = 200;
 inline constexpr std::int64_t kMinBlockSamples = 10;
