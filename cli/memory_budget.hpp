@@ -24,8 +24,8 @@ std::int64_t estimated_values(const LogArguments& log);
 
 /// Whether exact Allan curves of `log` would need more than `memory_bytes` in memory, so that
 /// they are computed out of core (allan_out_of_core.hpp) instead. Never for stdin (it cannot be
-/// read twice) nor for --gaps split/fill with a time column or a ROS bag (they need the whole log in
-/// memory).
+/// read twice) nor for --gaps split/fill with a time column or a ROS bag (they need the whole log
+/// in memory).
 bool exact_needs_out_of_core(const LogArguments& log, std::int64_t memory_bytes);
 
 }  // namespace sigmatau::cli

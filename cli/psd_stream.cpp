@@ -71,7 +71,7 @@ std::int64_t stated_rows(const LogOptions& options, const TimingReport& opened) 
   if (ec) return -1;
   const std::int64_t value_bytes = options.binary == BinaryFormat::i16   ? 2
                                    : options.binary == BinaryFormat::f64 ? 8
-                                                                          : 4;
+                                                                         : 4;
   return std::max<std::int64_t>(0, bytes - options.skip_bytes) /
          (value_bytes * options.binary_channels);
 }
@@ -159,8 +159,7 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
 /// segment length came from a stated row count that turned out to choose another length.
 std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& options,
                                   const WelchOptions& welch, std::int64_t memory_bytes,
-                                  std::optional<std::int64_t> known_rows,
-                                  std::int64_t& recount) {
+                                  std::optional<std::int64_t> known_rows, std::int64_t& recount) {
   LogReader reader(options);
   LogPsd out;
   LoadedChannels& input = out.input;
