@@ -82,8 +82,8 @@ TEST_CASE("with stride 1 at every tau the stream equals the exact estimator") {
   const auto y = gyro_like(200000, 1);
   const auto series = PhaseSeries::from_rate(y, 0.01);
   StreamSettings settings;
-  settings.statistics = {Statistic::oadev, Statistic::ohdev, Statistic::mdev, Statistic::tdev,
-                         Statistic::adev,  Statistic::hdev};
+  settings.statistics = {Statistic::oadev, Statistic::ohdev, Statistic::mdev,
+                         Statistic::tdev,  Statistic::adev,  Statistic::hdev};
   settings.density = 1 << 20;  // s = max(1, m / K) = 1 for every m of this log
   const auto stream = stream_of(y, DataKind::rate, settings);
   REQUIRE(stream.size() == series.size());
@@ -149,8 +149,7 @@ TEST_CASE("the one-pass noise sums identify each power-law type as identify_nois
       for (std::size_t k = 0; k < exact.points.size(); ++k) {
         if ((series.size() - 1) / exact.points[k].value.m < 30) break;  // lag-1 ACF range
         CAPTURE(exact.points[k].value.m);
-        CHECK(curves[i].points[k].confidence.noise.alpha ==
-              exact.points[k].confidence.noise.alpha);
+        CHECK(curves[i].points[k].confidence.noise.alpha == exact.points[k].confidence.noise.alpha);
       }
     }
   }

@@ -90,9 +90,9 @@ struct AllanStream::Impl {
   std::vector<std::int64_t> noise_factors;  // ascending distinct m
   std::vector<NoiseSums> noise;
   std::vector<int> noise_level;
-  Doubles noise_tile;  // NoiseSums::kHistory + kNoiseTile doubles of scratch
-  std::int64_t samples = 0;  // values added
-  std::int64_t points = 0;   // phase points emitted
+  Doubles noise_tile;           // NoiseSums::kHistory + kNoiseTile doubles of scratch
+  std::int64_t samples = 0;     // values added
+  std::int64_t points = 0;      // phase points emitted
   std::vector<double> pending;  // input not yet processed (less than kChunk samples)
 
   std::int64_t stride_for(Statistic s, std::int64_t m) const {
@@ -218,8 +218,8 @@ struct AllanStream::Impl {
     std::vector<StridedTerms> result = taus;
     if (!need_p || points == 0) return result;
     for (auto& tau : result) {
-      tau.finish_running_sum(levels[static_cast<std::size_t>(tau.level)],
-                             phase.running_total(), points);
+      tau.finish_running_sum(levels[static_cast<std::size_t>(tau.level)], phase.running_total(),
+                             points);
     }
     return result;
   }
@@ -250,7 +250,8 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   if (!(tau0_s > 0.0 && std::isfinite(tau0_s))) {
-    throw Error("sample interval tau0 must be a finite number > 0 s, got " + std::to_string(tau0_s));
+    throw Error("sample interval tau0 must be a finite number > 0 s, got " +
+                std::to_string(tau0_s));
   }
   if (!(settings.density >= 1 && settings.density <= (1 << 20))) {
     throw Error("--density must be an integer from 1 to 1048576, got " +
@@ -276,8 +277,9 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
       factors = averaging_factors(settings.taus, Statistic::oadev, 4 * kMaxFactor + 1, tau0_s);
       break;
     default:
-      throw Error("stream mode computes octave or decade taus, or a list of seconds; "
-                  "\"many\" and \"all\" need --mode exact");
+      throw Error(
+          "stream mode computes octave or decade taus, or a list of seconds; "
+          "\"many\" and \"all\" need --mode exact");
   }
   for (const Statistic statistic : settings.statistics) {
     if (statistic == Statistic::totdev) {
@@ -340,13 +342,15 @@ void AllanStream::add(std::span<const double> values) {
   if (!s.pending.empty()) {
     const std::size_t take =
         std::min(values.size(), static_cast<std::size_t>(kChunk) - s.pending.size());
-    s.pending.insert(s.pending.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(take));
+    s.pending.insert(s.pending.end(), values.begin(),
+                     values.begin() + static_cast<std::ptrdiff_t>(take));
     i = take;
     if (s.pending.size() < static_cast<std::size_t>(kChunk)) return;
     s.process_chunk(s.pending);
     s.pending.clear();
   }
-  for (; i + static_cast<std::size_t>(kChunk) <= values.size(); i += static_cast<std::size_t>(kChunk)) {
+  for (; i + static_cast<std::size_t>(kChunk) <= values.size();
+       i += static_cast<std::size_t>(kChunk)) {
     s.process_chunk(values.subspan(i, static_cast<std::size_t>(kChunk)));
   }
   s.pending.assign(values.begin() + static_cast<std::ptrdiff_t>(i), values.end());
@@ -406,16 +410,23 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
       double variance = 0.0;
       switch (statistic) {
         case Statistic::adev:
-        case Statistic::oadev: variance = mean_square / 2.0; break;
+        case Statistic::oadev:
+          variance = mean_square / 2.0;
+          break;
         case Statistic::hdev:
-        case Statistic::ohdev: variance = mean_square / 6.0; break;
-        case Statistic::mdev: variance = mean_square / (2.0 * md * md); break;
+        case Statistic::ohdev:
+          variance = mean_square / 6.0;
+          break;
+        case Statistic::mdev:
+          variance = mean_square / (2.0 * md * md);
+          break;
         case Statistic::tdev: {
           const double tau_s = md * s.tau0_s;
           variance = mean_square / (2.0 * md * md) * (tau_s * tau_s / 3.0);
           break;
         }
-        case Statistic::totdev: break;
+        case Statistic::totdev:
+          break;
       }
       variance *= scale * scale;
       CurvePoint point;

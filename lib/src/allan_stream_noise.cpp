@@ -20,8 +20,8 @@
 #include <cstring>
 #include <limits>
 
-#include "simd_clones.hpp"
 #include "sigmatau/phase_series.hpp"
+#include "simd_clones.hpp"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SIGMATAU_NOISE_INLINE inline __attribute__((always_inline))
@@ -41,10 +41,14 @@ using LaneSums = double[4][3][kLanes];
 /// D0 = z[0], Dd = D(d-1) at p minus D(d-1) at p - 1 (reads p[-d .. 0]).
 SIGMATAU_NOISE_INLINE double difference(const double* p, int d) {
   switch (d) {
-    case 0: return p[0];
-    case 1: return p[0] - p[-1];
-    case 2: return (p[0] - p[-1]) - (p[-1] - p[-2]);
-    default: return ((p[0] - p[-1]) - (p[-1] - p[-2])) - ((p[-1] - p[-2]) - (p[-2] - p[-3]));
+    case 0:
+      return p[0];
+    case 1:
+      return p[0] - p[-1];
+    case 2:
+      return (p[0] - p[-1]) - (p[-1] - p[-2]);
+    default:
+      return ((p[0] - p[-1]) - (p[-1] - p[-2])) - ((p[-1] - p[-2]) - (p[-2] - p[-3]));
   }
 }
 
@@ -204,8 +208,8 @@ NoiseIdentification NoiseSums::identify(Statistic statistic, DataKind kind, std:
       if (std::isnan(r1)) break;
       const double delta = r1 / (1 + r1);
       if (delta < kStationaryDelta || d >= d_max || sums_[d].n < 3) {
-        alpha = -static_cast<int>(std::lround(2 * delta)) - 2 * d +
-                (kind == DataKind::phase ? 2 : 0);
+        alpha =
+            -static_cast<int>(std::lround(2 * delta)) - 2 * d + (kind == DataKind::phase ? 2 : 0);
         found = true;
         break;
       }

@@ -46,9 +46,9 @@ using Doubles = std::vector<double, UninitialisedAllocator<double>>;
 /// Sums of one series and of its lag-1 products, with the series' first value subtracted (a
 /// shift changes no autocorrelation, and it keeps a drifting series from cancelling).
 struct AcfSums {
-  std::int64_t n = 0;  ///< values so far
-  double shift = 0;    ///< the first value
-  double last = 0;     ///< the last value minus shift (the first one minus shift is 0)
+  std::int64_t n = 0;        ///< values so far
+  double shift = 0;          ///< the first value
+  double last = 0;           ///< the last value minus shift (the first one minus shift is 0)
   DoubleDouble s1, s2, s12;  ///< sum of b, of b^2, of b_{i-1} b_i (b = value - shift)
   /// Lag-1 autocorrelation (Riley & Greenhall 2004 eq. 2) from the sums; NaN if constant.
   double r1() const;
@@ -85,7 +85,7 @@ class NoiseSums {
   /// The noise at this m for `statistic` (difference order as identify_noise), from data of
   /// `kind` at sample interval tau0_s [s].
   NoiseIdentification identify(Statistic statistic, DataKind kind, std::int64_t m,
-                                double tau0_s) const;
+                               double tau0_s) const;
 
   std::int64_t next_k = 0;  ///< next k whose x[k m] is read
   std::size_t memory_bytes() const;

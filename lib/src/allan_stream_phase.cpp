@@ -25,8 +25,8 @@ namespace {
 constexpr std::size_t kTile = 1024;
 
 /// s[i] + e[i] = y[i] - offset exactly (TwoSum); returns 0 if every s[i] is finite.
-SIGMATAU_SIMD_CLONES unsigned split_offset(const double* y, std::size_t n, double offset,
-                                           double* s, double* e) {
+SIGMATAU_SIMD_CLONES unsigned split_offset(const double* y, std::size_t n, double offset, double* s,
+                                           double* e) {
   unsigned bad = 0;
   const double b = -offset;
   for (std::size_t i = 0; i < n; ++i) {

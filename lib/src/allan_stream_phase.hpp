@@ -40,7 +40,7 @@ class StreamPhase {
  private:
   DataKind kind_;
   bool started_ = false;
-  double offset_ = 0;  // y0bar (rate, increment: mean of the first chunk) or x_0 (phase)
+  double offset_ = 0;     // y0bar (rate, increment: mean of the first chunk) or x_0 (phase)
   double h_ = 0, l_ = 0;  // the running phase, not renormalised
   DoubleDouble p_run_;
 };

@@ -67,11 +67,21 @@ inline __attribute__((always_inline)) void octave_block(const double* h, const d
 SIGMATAU_SIMD_CLONES void octave_blocks(int G, const double* h, const double* l, std::int64_t q0,
                                         double* out) {
   switch (G) {
-    case 2: octave_block<2>(h, l, q0, out); break;
-    case 3: octave_block<3>(h, l, q0, out); break;
-    case 4: octave_block<4>(h, l, q0, out); break;
-    case 5: octave_block<5>(h, l, q0, out); break;
-    default: octave_block<6>(h, l, q0, out); break;
+    case 2:
+      octave_block<2>(h, l, q0, out);
+      break;
+    case 3:
+      octave_block<3>(h, l, q0, out);
+      break;
+    case 4:
+      octave_block<4>(h, l, q0, out);
+      break;
+    case 5:
+      octave_block<5>(h, l, q0, out);
+      break;
+    default:
+      octave_block<6>(h, l, q0, out);
+      break;
   }
 }
 
@@ -138,8 +148,7 @@ void run_octave_blocks(std::span<StridedTerms* const> taus, const Level& source)
     if (G >= 2) {
       double out[kOctaveMax];
       // Blocks whose last term ends before `end` (run() sums a term once its last point is in).
-      for (std::int64_t first_end = e; first_end + kKernelTerms <= end;
-           first_end += kKernelTerms) {
+      for (std::int64_t first_end = e; first_end + kKernelTerms <= end; first_end += kKernelTerms) {
         octave_blocks(G, source.xh.data() + (first_end - source.begin),
                       source.xl.data() + (first_end - source.begin), eligible[a]->lag, out);
         for (int g = 0; g < G; ++g) {
