@@ -4,7 +4,7 @@
 //   Level         (allan_stream_levels.*)  the phase decimated to every power-of-two stride,
 //   StridedTerms  (allan_stream_terms.*)   the sum of squares of each statistic and factor,
 //   NoiseSums     (allan_stream_noise.*)   the lag-1 autocorrelation sums of each factor,
-// and forms the curves from the sums.
+// and forms the curves from the sums (allan_stream_curves.*).
 //
 // Glossary:
 //   K        overlap density (start points per tau)
@@ -23,6 +23,7 @@
 #include <limits>
 #include <string>
 
+#include "allan_stream_curves.hpp"
 #include "allan_stream_levels.hpp"
 #include "allan_stream_noise.hpp"
 #include "allan_stream_phase.hpp"
@@ -58,12 +59,6 @@ bool non_overlapping(Statistic s) { return s == Statistic::adev || s == Statisti
 /// Series the noise sums need: identify_noise differences at most 2 times for the Allan-type
 /// statistics (MDEV too), 3 times for the Hadamard ones.
 int noise_orders(Statistic s) { return (s == Statistic::hdev || s == Statistic::ohdev) ? 4 : 3; }
-
-/// compute_allan_curve keeps the previous tau's noise type once floor((N-1)/m) averages are at
-/// most this many (allan_curve.cpp, from Stable32).
-std::int64_t stream_kept_noise_threshold(Statistic s) {
-  return (s == Statistic::adev || s == Statistic::hdev) ? 9 : 7;
-}
 
 std::int64_t largest_power_of_two_dividing(std::int64_t m) { return m & -m; }
 std::int64_t power_of_two_floor(std::int64_t v) {
@@ -225,27 +220,6 @@ struct AllanStream::Impl {
   }
 };
 
-double strided_equivalent_dof(Statistic statistic, int alpha, std::int64_t m, std::int64_t s,
-                              std::int64_t n_phase_points) {
-  if (!(s >= 1 && m >= s && m % s == 0)) {
-    throw Error("strided_equivalent_dof: the stride must divide m");
-  }
-  if (s == 1 || statistic == Statistic::adev || statistic == Statistic::hdev) {
-    return equivalent_dof(statistic, alpha, m, n_phase_points);
-  }
-  // The strided estimator reads only the phase at multiples of s: it is the fully overlapping
-  // estimator at lag q = m/s of that decimated series (N' = floor((N-1)/s) + 1 points). For the
-  // modified variances (F = 1), Greenhall's kernels depend on m only through S = q, so this is
-  // the strided EDF exactly; for the unmodified ones it is the same sampling of the same
-  // continuous-time noise (for flicker PM the ln m of Table 3 becomes ln q: a slight
-  // underestimate of the EDF).
-  const std::int64_t q = m / s;
-  const std::int64_t n = (n_phase_points - 1) / s + 1;
-  const int d = (statistic == Statistic::ohdev) ? 3 : 2;
-  const bool modified = statistic == Statistic::mdev || statistic == Statistic::tdev;
-  return greenhall_edf(alpha, d, q, modified ? 1 : q, q, n);
-}
-
 AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& settings)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
@@ -394,59 +368,11 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
     copy->pending.clear();
   }
   const Impl& s = copy ? *copy : *impl_;
-  const std::int64_t N = s.points;
   const std::vector<StridedTerms> taus = s.finished_taus();
+  detail::StreamTotals totals{s.kind, s.tau0_s, s.points, taus, s.noise_factors, s.noise};
   std::vector<AllanCurve> result;
   for (const Statistic statistic : s.settings.statistics) {
-    AllanCurve curve;
-    curve.statistic = statistic;
-    curve.confidence_level = confidence_level;
-    const std::int64_t max_m = max_averaging_factor(statistic, N);
-    for (const auto& tau : taus) {
-      if (tau.statistic != statistic || tau.m > max_m || tau.terms <= 0) continue;
-      const double md = static_cast<double>(tau.m);
-      const double scale = s.kind == DataKind::rate ? 1.0 / md : 1.0 / (md * s.tau0_s);
-      const double mean_square = tau.sum.value() / static_cast<double>(tau.terms);
-      double variance = 0.0;
-      switch (statistic) {
-        case Statistic::adev:
-        case Statistic::oadev:
-          variance = mean_square / 2.0;
-          break;
-        case Statistic::hdev:
-        case Statistic::ohdev:
-          variance = mean_square / 6.0;
-          break;
-        case Statistic::mdev:
-          variance = mean_square / (2.0 * md * md);
-          break;
-        case Statistic::tdev: {
-          const double tau_s = md * s.tau0_s;
-          variance = mean_square / (2.0 * md * md) * (tau_s * tau_s / 3.0);
-          break;
-        }
-        case Statistic::totdev:
-          break;
-      }
-      variance *= scale * scale;
-      CurvePoint point;
-      point.value = {md * s.tau0_s, tau.m, tau.terms, std::sqrt(variance)};
-      const auto it = std::lower_bound(s.noise_factors.begin(), s.noise_factors.end(), tau.m);
-      point.confidence.noise =
-          s.noise[static_cast<std::size_t>(it - s.noise_factors.begin())].identify(
-              statistic, s.kind, tau.m, s.tau0_s);
-      const std::int64_t averages = (N - 1) / tau.m;
-      if (!curve.points.empty() && averages <= stream_kept_noise_threshold(statistic)) {
-        point.confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
-        point.confidence.noise.method = NoiseIdentification::Method::previous_tau;
-      }
-      point.confidence.edf =
-          strided_equivalent_dof(statistic, point.confidence.noise.alpha, tau.m, tau.stride, N);
-      point.confidence.interval =
-          chi_squared_interval(point.value.dev, point.confidence.edf, confidence_level);
-      curve.points.push_back(point);
-    }
-    result.push_back(std::move(curve));
+    result.push_back(detail::stream_curve(statistic, totals, confidence_level));
   }
   return result;
 }
