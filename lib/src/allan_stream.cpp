@@ -185,7 +185,6 @@ struct AllanStream::Impl {
         k += count;
       }
       state.next_k = k_end;
-      state.carry();
     }
   }
 

@@ -175,12 +175,12 @@ void NoiseSums::add(double* buffer, std::size_t count) {
   // The last kHistory values of history + new values.
   std::memcpy(history_, buffer + count, sizeof history_);
   count_ += static_cast<std::int64_t>(count);
-  pending_ = true;
+  uncarried_ += static_cast<std::int64_t>(count);
+  if (uncarried_ >= kCarryEvery) carry();
 }
 
 void NoiseSums::carry() {
-  if (!pending_) return;
-  pending_ = false;
+  uncarried_ = 0;
   for (int d = 0; d < orders_; ++d) {
     AcfSums& sums = sums_[d];
     for (int k = 0; k < kLanes; ++k) {
@@ -196,6 +196,11 @@ void NoiseSums::carry() {
 
 NoiseIdentification NoiseSums::identify(Statistic statistic, DataKind kind, std::int64_t m,
                                         double tau0_s) const {
+  if (uncarried_ > 0) {  // the sums as they would be after a carry(), the state unchanged
+    NoiseSums carried = *this;
+    carried.carry();
+    return carried.identify(statistic, kind, m, tau0_s);
+  }
   NoiseIdentification result;
   const int d_max = noise_order(statistic);
   const int lowest = d_max == 3 ? -4 : -2;

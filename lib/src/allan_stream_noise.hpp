@@ -71,9 +71,6 @@ class NoiseSums {
   /// Adds z values to the sums: buffer[kHistory .. kHistory + count) holds them, and add()
   /// writes the last kHistory earlier values to buffer[0 .. kHistory) (its own scratch).
   void add(double* buffer, std::size_t count);
-  /// Carries the plain-double lane sums into the double-double sums (after each chunk: bounds
-  /// the length of every plain-double sum to a chunk's values / kLanes).
-  void carry();
 
   /// Keeps x[k m] (the phase at multiples of m, rounded to double) while the B1 ratio may
   /// still need it.
@@ -99,7 +96,13 @@ class NoiseSums {
   std::int64_t count_ = 0;  ///< z values so far
   AcfSums sums_[4];
   double lanes_[4][3][kLanes] = {};  ///< per series: s1, s2, s12 lanes since the last carry()
-  bool pending_ = false;             ///< lanes hold something not yet carried
+  std::int64_t uncarried_ = 0;       ///< z values in the lanes
+  /// Values the lanes take before carry() (each plain-double lane sum stays about as short as
+  /// the exact sums' blocks: ~2k values; carrying less often than every chunk halves its cost).
+  static constexpr std::int64_t kCarryEvery = 16384;
+  /// Carries the plain-double lane sums into the double-double sums and brings n and last up
+  /// to date.
+  void carry();
   double history_[kHistory] = {};    ///< the last kHistory z values (oldest first)
   std::vector<double> kept_;
 };
