@@ -3,10 +3,13 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <iostream>
 
 #include "log_options.hpp"
+#include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/report.hpp"
@@ -41,7 +44,13 @@ struct AnalyzeArguments {
   std::string accel;
   std::string gyro_unit;
   std::string accel_unit;
+  std::string memory = "4GiB";
 };
+
+/// Bytes the in-memory analysis needs per value (sample x channel) at its peak: the value as
+/// read (8, and 16 while a column's vector grows), the double-double phase (16) and the sweep
+/// copy (8) of every channel's series, and one channel's rate copy for the PSD (8 / channels).
+constexpr std::int64_t kAnalyzeBytesPerValue = 40;
 
 struct DemoArguments {
   ChainArguments chain;
@@ -123,17 +132,24 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   return options;
 }
 
-void finish(AnalysisInput input, const ChainArguments& args,
-            const std::map<std::string, std::string>& extra, std::int64_t flicker_taps = 0) {
-  const PlotFormat plot_format = parse_plot_format(args.plot_format);
+/// Refuses an existing output directory without --force (before any reading).
+void check_output(const ChainArguments& args) {
   std::error_code ec;
   if (std::filesystem::exists(args.output, ec) && !args.force) {
     throw Error(args.output + " exists; use --force to replace it");
   }
+}
+
+/// Runs the chain (`analyze(options)`: in memory or bounded) and writes the output directory.
+void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze,
+            const ChainArguments& args, const std::map<std::string, std::string>& extra,
+            std::int64_t flicker_taps = 0) {
+  const PlotFormat plot_format = parse_plot_format(args.plot_format);
+  check_output(args);
   AnalysisOptions options = chain_options(args);
   options.flicker_taps = flicker_taps;
   const auto start = std::chrono::steady_clock::now();
-  AnalysisOutput analysis = run_analysis(std::move(input), options);
+  AnalysisOutput analysis = analyze(options);
   ReportOptions report_options;
   report_options.plot_format = plot_format;
   ReportFiles files = build_report(analysis.results_json, report_options);
@@ -149,59 +165,123 @@ void finish(AnalysisInput input, const ChainArguments& args,
             << seconds << " s\n";
 }
 
-void run_analyze(const AnalyzeArguments& args) {
-  LogArguments log_args = args.log;
-  const std::string common_unit = log_args.unit;
-  log_args.unit.clear();  // per-sensor units are applied below
-  LoadedChannels loaded = load_channels(log_args);
-  AnalysisInput input;
-  input.path = loaded.log.path;
-  input.rate_hz = loaded.rate_hz;
-  input.kind = loaded.kind;
-  if (loaded.log.timing.has_time) input.timing = loaded.log.timing;
-  std::error_code ec;
-  if (input.path != "-") {
-    input.bytes = static_cast<std::int64_t>(std::filesystem::file_size(input.path, ec));
-    if (ec) input.bytes = -1;
-    input.crc32 = file_crc32(input.path);
-  }
-  // Explicit --gyro / --accel columns override the name-based roles.
+/// The channels analyze works on, chosen from the log's channel names: explicit --gyro / --accel
+/// columns (only those), else every column with its role recognised by name; each with the
+/// factor of its sensor's unit (--gyro-unit / --accel-unit, else --unit).
+std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& names,
+                                            const AnalyzeArguments& args, DataKind kind) {
   std::map<std::string, ChannelRole> forced;
   auto force_roles = [&](const std::string& list, Sensor sensor, const char* option) {
     if (list.empty()) return;
-    const auto names = split_list(list, option);
-    if (names.size() != 3) throw Error(std::string(option) + " needs three columns x,y,z");
-    for (int axis = 0; axis < 3; ++axis) forced[names[axis]] = {sensor, axis};
+    const auto columns = split_list(list, option);
+    if (columns.size() != 3) throw Error(std::string(option) + " needs three columns x,y,z");
+    for (int axis = 0; axis < 3; ++axis) forced[columns[axis]] = {sensor, axis};
   };
   force_roles(args.gyro, Sensor::gyro, "--gyro");
   force_roles(args.accel, Sensor::accel, "--accel");
-  const std::string gyro_unit = !args.gyro_unit.empty() ? args.gyro_unit : common_unit;
-  const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : common_unit;
-  for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
-    AnalysisChannel channel;
-    channel.name = loaded.log.channel_names[c];
+  const std::string gyro_unit = !args.gyro_unit.empty() ? args.gyro_unit : args.log.unit;
+  const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : args.log.unit;
+  std::vector<BoundedChannel> chosen;
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    BoundedChannel channel;
+    channel.column = c;
+    channel.name = names[c];
     if (forced.count(channel.name)) {
       channel.role = forced[channel.name];
     } else if (forced.empty()) {
       channel.role = classify_channel(channel.name);
     }
     if (!forced.empty() && !forced.count(channel.name)) continue;  // only the named columns
-    std::string unit;
-    if (channel.role) unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
-    double factor = 1;
-    if (!unit.empty()) {
-      Dimension expected = channel.role->sensor == Sensor::gyro ? dim::angular_rate : dim::acceleration;
-      if (loaded.kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
-      factor = parse_unit_as(unit, expected, channel.role->sensor == Sensor::gyro ? "--gyro-unit" : "--accel-unit").factor;
+    if (channel.role) channel.input_unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
+    if (!channel.input_unit.empty()) {
+      const bool gyro = channel.role->sensor == Sensor::gyro;
+      Dimension expected = gyro ? dim::angular_rate : dim::acceleration;
+      if (kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
+      channel.to_si = parse_unit_as(channel.input_unit, expected, gyro ? "--gyro-unit" : "--accel-unit").factor;
     }
-    channel.values = std::move(loaded.log.channels[c]);
-    if (factor != 1) {
-      for (double& v : channel.values) v *= factor;
+    chosen.push_back(std::move(channel));
+  }
+  return chosen;
+}
+
+/// The provenance fields of the input file (size and CRC-32; none for stdin).
+AnalysisInput input_provenance(const std::string& path, DataKind kind) {
+  AnalysisInput input;
+  input.path = path;
+  input.kind = kind;
+  if (input.path != "-") {
+    std::error_code ec;
+    input.bytes = static_cast<std::int64_t>(std::filesystem::file_size(input.path, ec));
+    if (ec) input.bytes = -1;
+    input.crc32 = file_crc32(input.path);
+  }
+  return input;
+}
+
+/// Whether the in-memory analysis of this input would need more than --memory: then it runs in
+/// bounded memory. Never for stdin (a pipe cannot be re-read, and its size is unknown) nor for
+/// --gaps split / fill (they need the whole log in memory).
+bool needs_bounded(const AnalyzeArguments& args) {
+  const std::int64_t memory = parse_bytes(args.memory);
+  if (args.log.gaps == "split" || args.log.gaps == "fill") return false;
+  const std::int64_t values = estimated_values(args.log);
+  return values >= 0 && values > memory / kAnalyzeBytesPerValue;
+}
+
+void run_analyze_bounded(const AnalyzeArguments& args) {
+  std::cerr << "sigmatau: " << args.log.input << " needs more than --memory " << args.memory
+            << " in memory; analysing it in bounded memory (its values and phase in temporary "
+               "files in "
+            << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
+  LogArguments log_args = args.log;
+  log_args.unit.clear();  // per-sensor units are applied by choose_channels
+  const LogOptions options = log_options_from(log_args);
+  LoadedChannels kind_only;
+  set_input_unit(log_args, kind_only);
+  const DataKind kind = kind_only.kind;
+  check_output(args.chain);
+  Progress progress;
+  BoundedAnalysisSource source;
+  source.log = options;
+  source.channels = [&](const std::vector<std::string>& names) { return choose_channels(names, args, kind); };
+  source.rate_hz = [&](const TimingReport& timing) {
+    return resolve_rate_hz(args.log.rate_hz, timing, args.log.input);
+  };
+  source.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+  source.on_read = [&](const TimingReport& timing) {
+    progress.finish();
+    note_reading(log_args, options, timing);
+  };
+  finish([&](const AnalysisOptions& analysis_options) {
+           return run_analysis_bounded(source, input_provenance(args.log.input, kind), analysis_options);
+         },
+         args.chain, {});
+}
+
+void run_analyze(const AnalyzeArguments& args) {
+  if (needs_bounded(args)) {
+    run_analyze_bounded(args);
+    return;
+  }
+  LogArguments log_args = args.log;
+  log_args.unit.clear();  // per-sensor units are applied below
+  LoadedChannels loaded = load_channels(log_args);
+  AnalysisInput input = input_provenance(loaded.log.path, loaded.kind);
+  input.rate_hz = loaded.rate_hz;
+  if (loaded.log.timing.has_time) input.timing = loaded.log.timing;
+  for (const BoundedChannel& chosen : choose_channels(loaded.log.channel_names, args, loaded.kind)) {
+    AnalysisChannel channel;
+    channel.name = chosen.name;
+    channel.role = chosen.role;
+    channel.values = std::move(loaded.log.channels[chosen.column]);
+    if (chosen.to_si != 1) {
+      for (double& v : channel.values) v *= chosen.to_si;
     }
-    input.input_units.push_back(unit);
+    input.input_units.push_back(chosen.input_unit);
     input.channels.push_back(std::move(channel));
   }
-  finish(std::move(input), args.chain, {});
+  finish([&](const AnalysisOptions& options) { return run_analysis(std::move(input), options); },
+         args.chain, {});
 }
 
 void run_demo(const DemoArguments& args) {
@@ -260,8 +340,8 @@ void run_demo(const DemoArguments& args) {
   ChainArguments chain = args.chain;
   if (chain.spec.empty()) chain.spec = args.sheet;
   if (chain.trim == "auto") chain.trim = "none";  // a simulated log has no warm-up
-  finish(std::move(input), chain, {{"truth.json", simulation_sidecar_json(config)}},
-         flicker_taps(config));
+  finish([&](const AnalysisOptions& options) { return run_analysis(std::move(input), options); },
+         chain, {{"truth.json", simulation_sidecar_json(config)}}, flicker_taps(config));
 }
 
 }  // namespace
@@ -276,6 +356,11 @@ void add_analyze_command(CLI::App& app) {
   command->add_option("--accel", args->accel, "accelerometer columns x,y,z (default: by name)");
   command->add_option("--gyro-unit", args->gyro_unit, "unit of the gyro columns (default rad/s)");
   command->add_option("--accel-unit", args->accel_unit, "unit of the accelerometer columns (default m/s^2)");
+  command->add_option("--memory", args->memory,
+                      "memory for the analysis, e.g. 1GiB: a larger file is analysed in bounded "
+                      "memory, with its values and phase in temporary files (TMPDIR) and the same "
+                      "results; stdin and --gaps split/fill are always read into memory")
+      ->capture_default_str();
   add_chain_options(*command, args->chain);
   command->callback([args] { run_analyze(*args); });
 }

@@ -12,21 +12,18 @@
 #include <cstdio>
 #include <fstream>
 
+#include "analysis_results.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/units.hpp"
 #include "sigmatau/error.hpp"
-#include "sigmatau/filter_export.hpp"
-#include "sigmatau/fit.hpp"
 #include "sigmatau/warmup.hpp"
 
 namespace sigmatau {
 namespace {
 
 using nlohmann::json;
-
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::string lower(std::string_view s) {
   std::string out;
@@ -44,126 +41,6 @@ std::vector<double> as_rate(const std::vector<double>& values, DataKind kind, do
     if (!rate.empty()) rate.pop_back();
   }
   return rate;
-}
-
-json curve_json(const AllanCurve& curve) {
-  json points = json::array();
-  for (const auto& p : curve.points) {
-    points.push_back({{"tau", p.value.tau_s},
-                      {"m", p.value.m},
-                      {"n", p.value.n_terms},
-                      {"dev", number_or_null(p.value.dev)},
-                      {"ci_low", number_or_null(p.confidence.interval.low)},
-                      {"ci_high", number_or_null(p.confidence.interval.high)},
-                      {"edf", number_or_null(p.confidence.edf)},
-                      {"alpha", p.confidence.noise.alpha}});
-  }
-  return {{"statistic", std::string(to_string(curve.statistic))},
-          {"confidence", curve.confidence_level},
-          {"points", points}};
-}
-
-json psd_json(const PsdCurve& binned, const NoiseDensity& nd, const std::string& unit) {
-  return {{"convention", "one-sided"},
-          {"unit", "(" + unit + ")^2/Hz"},
-          {"window", std::string(to_string(binned.window))},
-          {"segment_length", binned.segment_length},
-          {"segments", binned.segments},
-          {"frequency", binned.frequency_hz},
-          {"psd", binned.psd},
-          {"edf", binned.edf},
-          {"noise_density",
-           {{"value", nd.value},
-            {"ci_low", nd.ci_low},
-            {"ci_high", nd.ci_high},
-            {"unit", unit + "/sqrt(Hz)"},
-            {"convention", "N = sqrt(two-sided level) (data-sheet / Kalibr / Allan N)"},
-            {"band_hz", {nd.band_low_hz, nd.band_high_hz}},
-            {"band_detected", nd.band_detected},
-            {"edf", nd.edf},
-            {"one_sided_asd", nd.one_sided_asd}}}};
-}
-
-std::string si_rate_unit(const std::optional<ChannelRole>& role) {
-  if (!role) return "";
-  return role->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
-}
-
-/// SI units of the fitted parameters (noise_model.hpp), per sensor.
-std::string parameter_unit(NoiseTerm term, Sensor sensor) {
-  const bool gyro = sensor == Sensor::gyro;
-  switch (term) {
-    case NoiseTerm::quantization: return gyro ? "rad" : "m/s";
-    case NoiseTerm::white: return gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
-    case NoiseTerm::bias_instability: return gyro ? "rad/s" : "m/s^2";
-    case NoiseTerm::rate_random_walk: return gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
-    case NoiseTerm::rate_ramp: return gyro ? "rad/s^2" : "m/s^3";
-    default: return "";
-  }
-}
-
-/// Points of the model drawn over the curve: the fitted total and each term's asymptote.
-constexpr int kModelPoints = 60;
-
-/// The fit of one channel in the JSON shape, plus what the plots draw.
-json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, double tau_lo,
-              double tau_hi) {
-  json parameters = json::object();
-  json model_terms = json::array();
-  for (NoiseTerm term : fit.model_terms) model_terms.push_back(std::string(term_symbol(term)));
-  for (const auto& p : fit.parameters) {
-    const std::string key(term_symbol(p.term));
-    json entry = {{"unit", parameter_unit(p.term, sensor)}};
-    if (p.in_model) {
-      entry["value"] = p.value;
-      entry["ci_low"] = p.ci_low;
-      entry["ci_high"] = p.ci_high;
-      if (std::isfinite(p.edf)) entry["edf"] = p.edf;
-      if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
-    } else {
-      entry["upper_bound"] = p.upper_bound;
-    }
-    parameters[key] = entry;
-  }
-  // The fitted model and each term's IEEE asymptote on a log grid over the curve's taus.
-  const NoiseTerms terms = fit.noise_terms();
-  std::vector<double> taus, total;
-  json per_term = json::object();
-  for (int i = 0; i < kModelPoints; ++i) {
-    const double tau = tau_lo * std::pow(tau_hi / tau_lo, static_cast<double>(i) / (kModelPoints - 1));
-    taus.push_back(tau);
-    total.push_back(std::sqrt(continuous_avar(terms, tau)));
-  }
-  json readouts = json::array();
-  for (NoiseTerm term : fit.model_terms) {
-    const auto& p = fit.parameter(term);
-    std::vector<double> line;
-    for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
-    per_term[std::string(term_symbol(term))] = line;
-    const ReadOff r = read_off(term);
-    double tau_read = r.tau_read_s;
-    if (term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s) && p.tau_min_s > 0) tau_read = p.tau_min_s;
-    if (tau_read >= tau_lo && tau_read <= tau_hi) {
-      readouts.push_back({{"term", std::string(term_symbol(term))}, {"tau", tau_read},
-                          {"adev", adev_line(term, p.value, tau_read)}});
-    }
-  }
-  return {{"name", name},
-          {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
-          {"model_terms", model_terms},
-          {"parameters", parameters},
-          {"method", std::string(to_string(fit.method))},
-          {"chi_squared", number_or_null(fit.chi_squared)},
-          {"bic", number_or_null(fit.bic)},
-          {"model_adev", {{"tau", taus}, {"adev", total}}},
-          {"terms_adev", per_term},
-          {"readouts", readouts}};
-}
-
-std::string rate_label(double rate_hz) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%gHz", rate_hz);
-  return text;
 }
 
 }  // namespace
@@ -211,12 +88,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   if (!(input.rate_hz > 0)) throw Error(input.path + ": sample rate must be > 0");
   if (options.statistics.empty()) throw Error("no statistic asked for");
   AnalysisOutput output;
-  json results;
-  results["tool"] = "sigmatau";
-  results["version"] = SIGMATAU_VERSION;
-  results["schema"] = 1;
-  results["created_utc"] = options.created_utc;
-  results["confidence"] = options.confidence;
+  json results = detail::results_header(options);
   json warnings = json::array();
 
   // Data checks on the log as read: saturation and stuck runs per channel, and whether each
@@ -250,9 +122,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
 
   // Trim the warm-up.
   const std::int64_t samples_in = static_cast<std::int64_t>(input.channels.front().values.size());
-  json trim = {{"mode", options.trim == TrimMode::automatic ? "auto"
-                        : options.trim == TrimMode::none    ? "none"
-                                                            : "fixed"}};
+  json trim = detail::trim_mode_json(options);
   std::int64_t trim_samples = 0;
   if (options.trim == TrimMode::automatic) {
     std::vector<std::vector<double>> rates;
@@ -263,41 +133,13 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     trim_samples = d.trim_samples;
     trim["reason"] = d.reason;
     if (d.channel >= 0) trim["channel"] = input.channels[d.channel].name;
-  } else if (options.trim == TrimMode::fixed) {
-    if (!(options.trim_s >= 0)) throw Error("--trim must be >= 0 s");
-    trim_samples = static_cast<std::int64_t>(std::llround(options.trim_s * input.rate_hz));
-    trim["reason"] = "trimmed " + std::to_string(options.trim_s) + " s as asked (--trim)";
   } else {
-    trim["reason"] = "not trimmed (--trim none)";
+    trim_samples = detail::requested_trim(options, input.rate_hz, trim);
   }
-  if (trim_samples >= samples_in) {
-    throw Error("the trim (" + std::to_string(trim_samples) + " samples) leaves nothing of the " +
-                std::to_string(samples_in) + "-sample log");
-  }
+  detail::record_trim(trim_samples, samples_in, input.rate_hz, trim);
   for (auto& c : input.channels) c.values.erase(c.values.begin(), c.values.begin() + trim_samples);
-  trim["samples"] = trim_samples;
-  trim["seconds"] = static_cast<double>(trim_samples) / input.rate_hz;
   const std::int64_t samples = samples_in - trim_samples;
-
-  results["input"] = {{"path", input.path},
-                      {"samples", samples},
-                      {"samples_read", samples_in},
-                      {"rate_hz", input.rate_hz},
-                      {"duration_s", static_cast<double>(samples) / input.rate_hz},
-                      {"kind", std::string(to_string(input.kind))},
-                      {"trim", trim}};
-  if (input.bytes >= 0) results["input"]["bytes"] = input.bytes;
-  if (!input.crc32.empty()) results["input"]["crc32"] = input.crc32;
-  if (input.timing) {
-    const auto& t = *input.timing;
-    json gaps = json::array();
-    for (const auto& g : t.gaps) gaps.push_back({{"row", g.row}, {"line", g.line}, {"start_s", g.start_s}, {"length_s", g.length_s}});
-    results["input"]["timing"] = {{"rate_hz", t.rate_hz}, {"mean_interval_s", t.mean_interval_s},
-                                  {"jitter_s", t.jitter_s}, {"non_increasing", t.non_increasing},
-                                  {"gaps", gaps}};
-  } else {
-    results["input"]["timing"] = nullptr;
-  }
+  results["input"] = detail::input_json(input, samples, samples_in, trim);
 
   // --gaps split: the contiguous segments left after the trim. Curves and PSD are computed per
   // segment and pooled (allan_segments.hpp), so no difference or PSD window spans a gap.
@@ -339,35 +181,18 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   results["channels"] = json::array();
   for (std::size_t c = 0; c < input.channels.size(); ++c) {
     const auto& channel = input.channels[c];
-    json entry = {{"name", channel.name},
-                  {"unit", si_rate_unit(channel.role)},
-                  {"input_unit", c < input.input_units.size() ? input.input_units[c] : ""}};
-    if (channel.role) {
-      entry["sensor"] = std::string(to_string(channel.role->sensor));
-      entry["axis"] = std::string(1, static_cast<char>('x' + channel.role->axis));
-    }
-    entry["allan"] = json::array();
-    for (const auto& curve : curves[c]) entry["allan"].push_back(curve_json(curve));
+    json entry = detail::channel_json(channel, c < input.input_units.size() ? input.input_units[c] : "",
+                                      curves[c]);
     if (options.dynamic_windows > 0) {
-      // Half-overlapping windows: K windows of length 2 M / (K + 1) starting every half window.
       const auto total = static_cast<std::int64_t>(channel.values.size());
-      const std::int64_t length = 2 * total / (options.dynamic_windows + 1);
+      const std::int64_t length = detail::dynamic_window_length(total, options.dynamic_windows);
       json windows = json::array();
-      if (length >= 16) {
+      if (length >= detail::kMinDynamicWindow) {
         for (int w = 0; w < options.dynamic_windows; ++w) {
           const std::int64_t start = w * length / 2;
           const std::span<const double> part(channel.values.data() + start, static_cast<std::size_t>(length));
           const PhaseSeries window = PhaseSeries::from_samples(part, input.kind, 1.0 / input.rate_hz);
-          const auto m = averaging_factors(TauSpec{}, Statistic::oadev, window.size(), window.tau0_s());
-          std::vector<double> taus, devs;
-          for (const auto& p : compute_deviation(window, Statistic::oadev, m)) {
-            taus.push_back(p.tau_s);
-            devs.push_back(p.dev);
-          }
-          windows.push_back({{"start_s", static_cast<double>(start) / input.rate_hz},
-                             {"end_s", static_cast<double>(start + length) / input.rate_hz},
-                             {"tau", taus},
-                             {"oadev", devs}});
+          windows.push_back(detail::dynamic_window_json(window, start, length, input.rate_hz));
         }
       }
       entry["dynamic"] = {{"window_s", static_cast<double>(length) / input.rate_hz}, {"windows", windows}};
@@ -387,120 +212,15 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());
       const PsdCurve psd = split ? welch_psd_stretches(stretches, input.rate_hz, options.welch)
                                  : welch_psd(rates.front(), input.rate_hz, options.welch);
-      const NoiseDensity nd = noise_density(psd, std::nullopt, options.confidence);
-      entry["psd"] = psd_json(log_binned(psd, options.psd_bins_per_decade), nd, si_rate_unit(channel.role));
+      detail::add_psd(entry, psd, channel, options);
     } catch (const Error& e) {
       warnings.push_back(channel.name + ": no PSD (" + e.what() + ")");
     }
     results["channels"].push_back(entry);
   }
 
-  // Noise-term fit of every sensor channel (joint fit, model chosen by BIC) on the first curve,
-  // which must be OADEV for the fit.
-  std::vector<MeasuredParameter> measured;
-  json fits = json::array();
-  const bool first_is_oadev = options.statistics.front() == Statistic::oadev;
-  for (std::size_t c = 0; c < input.channels.size(); ++c) {
-    const auto& channel = input.channels[c];
-    if (!channel.role) continue;
-    if (!first_is_oadev) {
-      warnings.push_back("noise terms are fitted from OADEV: put oadev first in --stat to fit them");
-      break;
-    }
-    FitOptions fit_options;
-    fit_options.confidence_level = options.confidence;
-    CurveSource source;
-    source.tau0_s = 1.0 / input.rate_hz;
-    // Split: the segments' samples counted as one record (the fit's OAVAR covariance assumes
-    // one contiguous series; pooled segments have slightly fewer terms at long tau).
-    source.n_phase_points = samples + 1 - (input.kind == DataKind::phase ? 1 : 0);
-    source.flicker_taps = options.flicker_taps;
-    try {
-      const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
-      const ChannelFit& joint = *fit.joint;
-      const auto& points = curves[c].front().points;
-      fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
-                              points.back().value.tau_s));
-      const std::string axis(1, static_cast<char>('x' + channel.role->axis));
-      const std::pair<NoiseTerm, MeasuredQuantity> kMeasured[] = {
-          {NoiseTerm::white, MeasuredQuantity::white_noise},
-          {NoiseTerm::bias_instability, MeasuredQuantity::bias_instability},
-          {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
-      for (const auto& [term, quantity] : kMeasured) {
-        const auto& p = joint.parameter(term);
-        if (p.in_model) measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
-      }
-    } catch (const Error& e) {
-      warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");
-    }
-  }
-  results["fit"] = {{"method", "joint"}, {"confidence", options.confidence}, {"channels", fits}};
-
-  // Filter covariances and exports at each rate.
-  results["filter"] = json::array();
-  // The same conversion as `convert --fit` on this fit (terms kept on some axes only are given
-  // their upper bound on the others: convert.hpp, triads_from_fit_json).
-  std::vector<TriadNoise> present;
-  if (!fits.empty()) present = triads_from_fit_json(results["fit"].dump(), "the fit above");
-  if (!present.empty()) {
-    std::vector<double> rates = options.filter_rates_hz;
-    if (rates.empty()) rates.push_back(input.rate_hz);
-    for (double rate : rates) {
-      ConvertOptions convert;
-      convert.rate_hz = rate;
-      convert.bias_model = options.bias_model;
-      convert.convention = options.convention;
-      try {
-        const DiscreteNoise noise = convert_noise(present, convert, "noise terms fitted by sigmatau analyze");
-        const std::string label = rate_label(rate);
-        const std::pair<ExportFormat, std::string> kFiles[] = {
-            {ExportFormat::json, "filter_" + label + ".json"},
-            {ExportFormat::kalibr, "kalibr_imu_" + label + ".yaml"},
-            {ExportFormat::openvins, "openvins_imu_" + label + ".yaml"},
-            {ExportFormat::vins_fusion, "vins_fusion_" + label + ".yaml"},
-            {ExportFormat::gtsam, "gtsam_" + label + ".txt"},
-            {ExportFormat::px4, "px4_ekf2_" + label + ".params"}};
-        json entry = {{"rate_hz", rate}, {"explain", noise.explain}, {"files", json::array()}};
-        for (const auto& [format, file] : kFiles) {
-          const std::string text = export_filter_config(noise, format);
-          output.filter_files[file] = text;
-          entry["files"].push_back(file);
-          if (format == ExportFormat::json) entry["discrete"] = json::parse(text);
-        }
-        results["filter"].push_back(entry);
-      } catch (const Error& e) {
-        warnings.push_back("no filter covariances at " + rate_label(rate) + " (" + e.what() + ")");
-      }
-    }
-  }
-
-  // Data-sheet compliance and the sheet's lines for the plots.
-  results["compliance"] = nullptr;
-  if (options.spec) {
-    const DataSheet& sheet = *options.spec;
-    ComplianceOptions compliance_options;
-    compliance_options.convention = options.convention;
-    const auto items = check_compliance(measured, sheet, compliance_options);
-    results["compliance"] = json::parse(compliance_json(items, sheet, compliance_options));
-    json lines = json::object();
-    for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
-      if (!sheet.sensor(sensor)) continue;
-      try {
-        const TriadNoise t = triad_from_data_sheet(sheet, sensor, options.convention);
-        json l = json::object();
-        if (t.axes[0].white) l["white"] = *t.axes[0].white;
-        if (t.axes[0].bias_instability) l["bias_floor"] = kFlickerFloorFactor * *t.axes[0].bias_instability;
-        if (!l.empty()) lines[std::string(to_string(sensor))] = l;
-      } catch (const Error&) {
-        // A section without noise figures has no lines to draw.
-      }
-    }
-    results["spec_lines"] = lines;
-  }
-
-  results["warnings"] = warnings;
-  for (const auto& w : warnings) output.warnings.push_back(w.get<std::string>());
-  output.results_json = results.dump(1) + "\n";
+  detail::finish_results(results, warnings, input.channels, curves, samples, input.kind,
+                         input.rate_hz, options, output);
   return output;
 }
 

@@ -6,6 +6,7 @@
 /// stage (report.hpp) turns into plots, summary.md and report.html.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -86,6 +87,53 @@ struct AnalysisOutput {
 /// Runs the chain. Throws Error on unusable input (no channel, too short for one tau, trim
 /// longer than the log).
 AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options);
+
+/// One channel of a log for run_analysis_bounded: which column, and what it is.
+struct BoundedChannel {
+  std::size_t column = 0;  ///< index into the log's channel names (LogReader::channel_names)
+  std::string name;
+  std::optional<ChannelRole> role;  ///< as AnalysisChannel::role
+  double to_si = 1;        ///< every value is multiplied by this (1: taken as read)
+  std::string input_unit;  ///< as AnalysisInput::input_units ("" = SI)
+};
+
+/// Where run_analysis_bounded reads its log and how it reports.
+struct BoundedAnalysisSource {
+  /// The log: a file or a ROS bag, not stdin (its values are read once, into temporary files).
+  /// gaps must be report or error (split and fill need the whole log in memory).
+  LogOptions log;
+  /// The channels to analyse, chosen from the log's channel names (called once, before reading).
+  std::function<std::vector<BoundedChannel>(const std::vector<std::string>&)> channels;
+  /// The sample rate [Hz] from the timing of the whole log (may throw, e.g. resolve_rate_hz).
+  std::function<double(const TimingReport&)> rate_hz;
+  /// Called with (bytes read, total bytes or -1) after each block of the read; may be empty.
+  std::function<void(std::int64_t, std::int64_t)> progress;
+  /// Called once with the timing report when the log has been read; may be empty.
+  std::function<void(const TimingReport&)> on_read;
+  /// Where the values and the phase go: temporary files in storage.directory ($TMPDIR, /tmp),
+  /// at most about storage.resident_bytes of them mapped at once.
+  PhaseStorage storage = [] {
+    PhaseStorage s;
+    s.spill = true;
+    return s;
+  }();
+};
+
+/// run_analysis on a log that need not fit in memory, with the same results.json and filter
+/// files, bit for bit. The log is read once: data checks and sample count on the way, every
+/// selected channel's values (in SI) into a temporary file (8 bytes per value); the warm-up
+/// blocks, the phase of each curve (PhaseSeriesBuilder into spilled storage, --threads channels
+/// at a time: 32 bytes per sample each on disk), the Welch PSD and the dynamic windows then
+/// stream from those files. Resident memory of these stages: the reader's buffers +
+/// storage.resident_bytes + one Welch accumulator per channel of the group (<= ~40 MiB each at
+/// the 2^20-sample segment cap), whatever the length. Not bounded here: the noise-term fit
+/// (fit.hpp), whose exact OAVAR covariance takes FFTs of 8 (m_a + m_b) points for the largest
+/// averaging factors, i.e. memory that grows with the log (~4 GiB at 2.7e7 samples).
+/// `input` carries path, bytes, crc32 and kind (channels, rate and timing are filled in here).
+/// Throws like LogReader and run_analysis, and Error for --gaps split/fill with more than one
+/// segment, or when a temporary file cannot be written.
+AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, AnalysisInput input,
+                                    const AnalysisOptions& options);
 
 /// CRC-32 (zlib) of a file as 8 hex digits, or "" when it cannot be read (stdin).
 std::string file_crc32(const std::string& path);

@@ -1,0 +1,352 @@
+// The analyze chain's shared stages (analysis_results.hpp): JSON of the input, trim, curves,
+// PSD and dynamic windows; then fit -> filter covariances -> compliance -> results.json.
+#include "analysis_results.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "sigmatau/allan.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
+#include "sigmatau/fit.hpp"
+#include "sigmatau/taus.hpp"
+
+namespace sigmatau::detail {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json curve_json(const AllanCurve& curve) {
+  json points = json::array();
+  for (const auto& p : curve.points) {
+    points.push_back({{"tau", p.value.tau_s},
+                      {"m", p.value.m},
+                      {"n", p.value.n_terms},
+                      {"dev", number_or_null(p.value.dev)},
+                      {"ci_low", number_or_null(p.confidence.interval.low)},
+                      {"ci_high", number_or_null(p.confidence.interval.high)},
+                      {"edf", number_or_null(p.confidence.edf)},
+                      {"alpha", p.confidence.noise.alpha}});
+  }
+  return {{"statistic", std::string(to_string(curve.statistic))},
+          {"confidence", curve.confidence_level},
+          {"points", points}};
+}
+
+json psd_json(const PsdCurve& binned, const NoiseDensity& nd, const std::string& unit) {
+  return {{"convention", "one-sided"},
+          {"unit", "(" + unit + ")^2/Hz"},
+          {"window", std::string(to_string(binned.window))},
+          {"segment_length", binned.segment_length},
+          {"segments", binned.segments},
+          {"frequency", binned.frequency_hz},
+          {"psd", binned.psd},
+          {"edf", binned.edf},
+          {"noise_density",
+           {{"value", nd.value},
+            {"ci_low", nd.ci_low},
+            {"ci_high", nd.ci_high},
+            {"unit", unit + "/sqrt(Hz)"},
+            {"convention", "N = sqrt(two-sided level) (data-sheet / Kalibr / Allan N)"},
+            {"band_hz", {nd.band_low_hz, nd.band_high_hz}},
+            {"band_detected", nd.band_detected},
+            {"edf", nd.edf},
+            {"one_sided_asd", nd.one_sided_asd}}}};
+}
+
+std::string si_rate_unit(const std::optional<ChannelRole>& role) {
+  if (!role) return "";
+  return role->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
+}
+
+/// SI units of the fitted parameters (noise_model.hpp), per sensor.
+std::string parameter_unit(NoiseTerm term, Sensor sensor) {
+  const bool gyro = sensor == Sensor::gyro;
+  switch (term) {
+    case NoiseTerm::quantization: return gyro ? "rad" : "m/s";
+    case NoiseTerm::white: return gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
+    case NoiseTerm::bias_instability: return gyro ? "rad/s" : "m/s^2";
+    case NoiseTerm::rate_random_walk: return gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
+    case NoiseTerm::rate_ramp: return gyro ? "rad/s^2" : "m/s^3";
+    default: return "";
+  }
+}
+
+/// Points of the model drawn over the curve: the fitted total and each term's asymptote.
+constexpr int kModelPoints = 60;
+
+/// The fit of one channel in the JSON shape, plus what the plots draw.
+json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, double tau_lo,
+              double tau_hi) {
+  json parameters = json::object();
+  json model_terms = json::array();
+  for (NoiseTerm term : fit.model_terms) model_terms.push_back(std::string(term_symbol(term)));
+  for (const auto& p : fit.parameters) {
+    const std::string key(term_symbol(p.term));
+    json entry = {{"unit", parameter_unit(p.term, sensor)}};
+    if (p.in_model) {
+      entry["value"] = p.value;
+      entry["ci_low"] = p.ci_low;
+      entry["ci_high"] = p.ci_high;
+      if (std::isfinite(p.edf)) entry["edf"] = p.edf;
+      if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+    } else {
+      entry["upper_bound"] = p.upper_bound;
+    }
+    parameters[key] = entry;
+  }
+  // The fitted model and each term's IEEE asymptote on a log grid over the curve's taus.
+  const NoiseTerms terms = fit.noise_terms();
+  std::vector<double> taus, total;
+  json per_term = json::object();
+  for (int i = 0; i < kModelPoints; ++i) {
+    const double tau = tau_lo * std::pow(tau_hi / tau_lo, static_cast<double>(i) / (kModelPoints - 1));
+    taus.push_back(tau);
+    total.push_back(std::sqrt(continuous_avar(terms, tau)));
+  }
+  json readouts = json::array();
+  for (NoiseTerm term : fit.model_terms) {
+    const auto& p = fit.parameter(term);
+    std::vector<double> line;
+    for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
+    per_term[std::string(term_symbol(term))] = line;
+    const ReadOff r = read_off(term);
+    double tau_read = r.tau_read_s;
+    if (term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s) && p.tau_min_s > 0) tau_read = p.tau_min_s;
+    if (tau_read >= tau_lo && tau_read <= tau_hi) {
+      readouts.push_back({{"term", std::string(term_symbol(term))}, {"tau", tau_read},
+                          {"adev", adev_line(term, p.value, tau_read)}});
+    }
+  }
+  return {{"name", name},
+          {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
+          {"model_terms", model_terms},
+          {"parameters", parameters},
+          {"method", std::string(to_string(fit.method))},
+          {"chi_squared", number_or_null(fit.chi_squared)},
+          {"bic", number_or_null(fit.bic)},
+          {"model_adev", {{"tau", taus}, {"adev", total}}},
+          {"terms_adev", per_term},
+          {"readouts", readouts}};
+}
+
+std::string rate_label(double rate_hz) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%gHz", rate_hz);
+  return text;
+}
+
+}  // namespace
+
+json results_header(const AnalysisOptions& options) {
+  json results;
+  results["tool"] = "sigmatau";
+  results["version"] = SIGMATAU_VERSION;
+  results["schema"] = 1;
+  results["created_utc"] = options.created_utc;
+  results["confidence"] = options.confidence;
+  return results;
+}
+
+json trim_mode_json(const AnalysisOptions& options) {
+  return {{"mode", options.trim == TrimMode::automatic ? "auto"
+                   : options.trim == TrimMode::none    ? "none"
+                                                       : "fixed"}};
+}
+
+std::int64_t requested_trim(const AnalysisOptions& options, double rate_hz, json& trim) {
+  if (options.trim == TrimMode::fixed) {
+    if (!(options.trim_s >= 0)) throw Error("--trim must be >= 0 s");
+    trim["reason"] = "trimmed " + std::to_string(options.trim_s) + " s as asked (--trim)";
+    return static_cast<std::int64_t>(std::llround(options.trim_s * rate_hz));
+  }
+  trim["reason"] = "not trimmed (--trim none)";
+  return 0;
+}
+
+void record_trim(std::int64_t trim_samples, std::int64_t samples_in, double rate_hz, json& trim) {
+  if (trim_samples >= samples_in) {
+    throw Error("the trim (" + std::to_string(trim_samples) + " samples) leaves nothing of the " +
+                std::to_string(samples_in) + "-sample log");
+  }
+  trim["samples"] = trim_samples;
+  trim["seconds"] = static_cast<double>(trim_samples) / rate_hz;
+}
+
+json input_json(const AnalysisInput& input, std::int64_t samples, std::int64_t samples_in,
+                const json& trim) {
+  json j = {{"path", input.path},
+            {"samples", samples},
+            {"samples_read", samples_in},
+            {"rate_hz", input.rate_hz},
+            {"duration_s", static_cast<double>(samples) / input.rate_hz},
+            {"kind", std::string(to_string(input.kind))},
+            {"trim", trim}};
+  if (input.bytes >= 0) j["bytes"] = input.bytes;
+  if (!input.crc32.empty()) j["crc32"] = input.crc32;
+  if (input.timing) {
+    const auto& t = *input.timing;
+    json gaps = json::array();
+    for (const auto& g : t.gaps) gaps.push_back({{"row", g.row}, {"line", g.line}, {"start_s", g.start_s}, {"length_s", g.length_s}});
+    j["timing"] = {{"rate_hz", t.rate_hz}, {"mean_interval_s", t.mean_interval_s},
+                   {"jitter_s", t.jitter_s}, {"non_increasing", t.non_increasing},
+                   {"gaps", gaps}};
+  } else {
+    j["timing"] = nullptr;
+  }
+  return j;
+}
+
+json channel_json(const AnalysisChannel& channel, const std::string& input_unit,
+                  const std::vector<AllanCurve>& curves) {
+  json entry = {{"name", channel.name},
+                {"unit", si_rate_unit(channel.role)},
+                {"input_unit", input_unit}};
+  if (channel.role) {
+    entry["sensor"] = std::string(to_string(channel.role->sensor));
+    entry["axis"] = std::string(1, static_cast<char>('x' + channel.role->axis));
+  }
+  entry["allan"] = json::array();
+  for (const auto& curve : curves) entry["allan"].push_back(curve_json(curve));
+  return entry;
+}
+
+void add_psd(json& entry, const PsdCurve& psd, const AnalysisChannel& channel,
+             const AnalysisOptions& options) {
+  const NoiseDensity nd = noise_density(psd, std::nullopt, options.confidence);
+  entry["psd"] = psd_json(log_binned(psd, options.psd_bins_per_decade), nd, si_rate_unit(channel.role));
+}
+
+std::int64_t dynamic_window_length(std::int64_t samples, int windows) {
+  return 2 * samples / (windows + 1);
+}
+
+json dynamic_window_json(const PhaseSeries& window, std::int64_t start, std::int64_t length,
+                         double rate_hz) {
+  const auto m = averaging_factors(TauSpec{}, Statistic::oadev, window.size(), window.tau0_s());
+  std::vector<double> taus, devs;
+  for (const auto& p : compute_deviation(window, Statistic::oadev, m)) {
+    taus.push_back(p.tau_s);
+    devs.push_back(p.dev);
+  }
+  return {{"start_s", static_cast<double>(start) / rate_hz},
+          {"end_s", static_cast<double>(start + length) / rate_hz},
+          {"tau", taus},
+          {"oadev", devs}};
+}
+
+void finish_results(json& results, json& warnings, const std::vector<AnalysisChannel>& channels,
+                    const std::vector<std::vector<AllanCurve>>& curves, std::int64_t samples,
+                    DataKind kind, double rate_hz, const AnalysisOptions& options,
+                    AnalysisOutput& output) {
+  // Noise-term fit of every sensor channel (joint fit, model chosen by BIC) on the first curve,
+  // which must be OADEV for the fit.
+  std::vector<MeasuredParameter> measured;
+  json fits = json::array();
+  const bool first_is_oadev = options.statistics.front() == Statistic::oadev;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const auto& channel = channels[c];
+    if (!channel.role) continue;
+    if (!first_is_oadev) {
+      warnings.push_back("noise terms are fitted from OADEV: put oadev first in --stat to fit them");
+      break;
+    }
+    FitOptions fit_options;
+    fit_options.confidence_level = options.confidence;
+    CurveSource source;
+    source.tau0_s = 1.0 / rate_hz;
+    // Split: the segments' samples counted as one record (the fit's OAVAR covariance assumes
+    // one contiguous series; pooled segments have slightly fewer terms at long tau).
+    source.n_phase_points = samples + 1 - (kind == DataKind::phase ? 1 : 0);
+    source.flicker_taps = options.flicker_taps;
+    try {
+      const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
+      const ChannelFit& joint = *fit.joint;
+      const auto& points = curves[c].front().points;
+      fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
+                              points.back().value.tau_s));
+      const std::string axis(1, static_cast<char>('x' + channel.role->axis));
+      const std::pair<NoiseTerm, MeasuredQuantity> kMeasured[] = {
+          {NoiseTerm::white, MeasuredQuantity::white_noise},
+          {NoiseTerm::bias_instability, MeasuredQuantity::bias_instability},
+          {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
+      for (const auto& [term, quantity] : kMeasured) {
+        const auto& p = joint.parameter(term);
+        if (p.in_model) measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
+      }
+    } catch (const Error& e) {
+      warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");
+    }
+  }
+  results["fit"] = {{"method", "joint"}, {"confidence", options.confidence}, {"channels", fits}};
+
+  // Filter covariances and exports at each rate.
+  results["filter"] = json::array();
+  // The same conversion as `convert --fit` on this fit (terms kept on some axes only are given
+  // their upper bound on the others: convert.hpp, triads_from_fit_json).
+  std::vector<TriadNoise> present;
+  if (!fits.empty()) present = triads_from_fit_json(results["fit"].dump(), "the fit above");
+  if (!present.empty()) {
+    std::vector<double> rates = options.filter_rates_hz;
+    if (rates.empty()) rates.push_back(rate_hz);
+    for (double rate : rates) {
+      ConvertOptions convert;
+      convert.rate_hz = rate;
+      convert.bias_model = options.bias_model;
+      convert.convention = options.convention;
+      try {
+        const DiscreteNoise noise = convert_noise(present, convert, "noise terms fitted by sigmatau analyze");
+        const std::string label = rate_label(rate);
+        const std::pair<ExportFormat, std::string> kFiles[] = {
+            {ExportFormat::json, "filter_" + label + ".json"},
+            {ExportFormat::kalibr, "kalibr_imu_" + label + ".yaml"},
+            {ExportFormat::openvins, "openvins_imu_" + label + ".yaml"},
+            {ExportFormat::vins_fusion, "vins_fusion_" + label + ".yaml"},
+            {ExportFormat::gtsam, "gtsam_" + label + ".txt"},
+            {ExportFormat::px4, "px4_ekf2_" + label + ".params"}};
+        json entry = {{"rate_hz", rate}, {"explain", noise.explain}, {"files", json::array()}};
+        for (const auto& [format, file] : kFiles) {
+          const std::string text = export_filter_config(noise, format);
+          output.filter_files[file] = text;
+          entry["files"].push_back(file);
+          if (format == ExportFormat::json) entry["discrete"] = json::parse(text);
+        }
+        results["filter"].push_back(entry);
+      } catch (const Error& e) {
+        warnings.push_back("no filter covariances at " + rate_label(rate) + " (" + e.what() + ")");
+      }
+    }
+  }
+
+  // Data-sheet compliance and the sheet's lines for the plots.
+  results["compliance"] = nullptr;
+  if (options.spec) {
+    const DataSheet& sheet = *options.spec;
+    ComplianceOptions compliance_options;
+    compliance_options.convention = options.convention;
+    const auto items = check_compliance(measured, sheet, compliance_options);
+    results["compliance"] = json::parse(compliance_json(items, sheet, compliance_options));
+    json lines = json::object();
+    for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+      if (!sheet.sensor(sensor)) continue;
+      try {
+        const TriadNoise t = triad_from_data_sheet(sheet, sensor, options.convention);
+        json l = json::object();
+        if (t.axes[0].white) l["white"] = *t.axes[0].white;
+        if (t.axes[0].bias_instability) l["bias_floor"] = kFlickerFloorFactor * *t.axes[0].bias_instability;
+        if (!l.empty()) lines[std::string(to_string(sensor))] = l;
+      } catch (const Error&) {
+        // A section without noise figures has no lines to draw.
+      }
+    }
+    results["spec_lines"] = lines;
+  }
+
+  results["warnings"] = warnings;
+  for (const auto& w : warnings) output.warnings.push_back(w.get<std::string>());
+  output.results_json = results.dump(1) + "\n";
+}
+
+}  // namespace sigmatau::detail
