@@ -1,6 +1,5 @@
 #pragma once
 // Internals of the noise fit (fit.cpp, fit_covariance.cpp, fit_joint.cpp, fit_slopes.cpp).
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -60,24 +59,6 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
                      const FitOptions& options);
 ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& source,
                       const FitOptions& options);
-
-/// Log-scale likelihood of OAVAR estimates (fit_log_likelihood.cpp): each ln v_j is taken as
-/// the log of mu_j chi2_nu / nu, with nu_j = 2 mu_j^2 / sigma_jj and the correlation of the
-/// v's, both from a reference model (mean mu, exact covariance sigma). The EDFs and the
-/// correlation are fixed at construction; deviance() then compares model means only.
-class LogScaleLikelihood {
- public:
-  LogScaleLikelihood(const Eigen::VectorXd& v, const Eigen::VectorXd& mu, const Eigen::MatrixXd& sigma);
-  /// -2 ln L up to a constant for the model mean `mu` [(rate unit)^2]; +infinity when a mu_j
-  /// is not > 0 or the reference was unusable (a v_j, mu_j or sigma_jj not > 0, singular).
-  double deviance(const Eigen::VectorXd& mu) const;
-
- private:
-  Eigen::VectorXd log_v_;  // ln v_j - psi(nu_j/2) + ln(nu_j/2)
-  Eigen::LLT<Eigen::MatrixXd> llt_;
-  double log_det_ = 0;
-  bool valid_ = false;
-};
 
 /// Non-negative least squares min ||A x - b||, x >= 0 (Lawson-Hanson active set).
 Eigen::VectorXd nnls(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);

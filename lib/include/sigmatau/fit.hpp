@@ -8,11 +8,8 @@
 /// sampled_avar), linear in theta = (Q^2, N^2, B^2, K^2, R^2) >= 0, and solved by non-negative
 /// generalised least squares whose weight is the inverse of the exact covariance of the OAVAR
 /// estimates across taus under the fitted model (oavar_covariance), iterated with the model.
-/// Candidate subsets of terms are compared by BIC on the log scale: -2 ln L of ln v, each
-/// estimate taken as a scaled chi-squared with the EDF and correlations of the largest
-/// candidate model (a Gaussian in v misjudges the skewed, 2-10 EDF points at the largest taus
-/// where K and R show), plus k ln n; terms not kept are reported as one-sided upper bounds
-/// from the variance under the bound.
+/// Candidate subsets of terms are compared by BIC (one weight matrix, the largest model's);
+/// terms not kept are reported as one-sided upper bounds from the variance under the bound.
 ///
 /// References:
 ///  - IEEE Std 952-1997 Annex C; IEEE Std 1293-1998 (read-off rules; THEORY.md section 2).
@@ -101,8 +98,7 @@ struct ChannelFit {
   FitMethod method = FitMethod::joint;    ///< joint or slopes
   std::vector<NoiseTerm> model_terms;     ///< in kFitTerms order
   std::vector<ParameterEstimate> parameters;  ///< one per candidate term, kFitTerms order
-  /// Joint fit: generalised chi-squared of the final model, and the BIC the selection compared
-  /// (log-scale -2 ln L + k ln n; a forced model's with its own EDFs); iterations of the
+  /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
   /// weight loop. Slopes: NaN, NaN, 0.
   double chi_squared = 0;
   double bic = 0;
