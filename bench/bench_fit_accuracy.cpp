@@ -251,12 +251,13 @@ int main(int argc, char** argv) {
     md << "; EDF exact/simulated (mean v/mu) at the largest taus:";
     for (std::size_t i = curve_m.size() >= 4 ? curve_m.size() - 4 : 0; i < curve_m.size(); ++i) {
       double mean = 0, var = 0;
-      for (const double r : ratios[i]) mean += r / ratios[i].size();
-      for (const double r : ratios[i]) var += (r - mean) * (r - mean) / (ratios[i].size() - 1);
+      const auto count = static_cast<double>(ratios[i].size());
+      for (const double r : ratios[i]) mean += r / count;
+      for (const double r : ratios[i]) var += (r - mean) * (r - mean) / (count - 1);
       const double mu = sampled_avar(truth, curve_m[i], truth_sampling);
       const auto ii = static_cast<Eigen::Index>(i);
       char text[160];
-      std::snprintf(text, sizeof text, " %g s %.1f/%.1f (%.3f)", curve_m[i] / profile.rate_hz,
+      std::snprintf(text, sizeof text, " %g s %.1f/%.1f (%.3f)", static_cast<double>(curve_m[i]) / profile.rate_hz,
                     2 * mu * mu / exact(ii, ii), 2 / var, mean);
       md << text;
     }

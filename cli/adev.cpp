@@ -332,18 +332,15 @@ void run_adev(const AdevArguments& args) {
                 "algorithm");
   }
   // Exact (and auto) mode on a file that would not fit --memory: exact out of core (the phase
-  // in temporary files, the file read twice). Not for --gaps split/fill with a time column
-  // (they need the whole log in memory); pipes cannot be read twice and stay in memory.
+  // in temporary files, the file read twice). Not for --gaps split/fill on a log with time
+  // stamps (a time column or a ROS bag: they need the whole log in memory); pipes cannot be
+  // read twice and stay in memory.
   bool out_of_core = false;
-  if (!stream && (args.log.time_column.empty() || args.log.gaps == "error" ||
-                  args.log.gaps == "report")) {
-    const std::int64_t values = estimated_values(args.log);
-    if (values >= 0 && values > memory / kExactBytesPerSample) {
-      std::cerr << "sigmatau: " << args.log.input << " needs more than --memory " << args.memory
-                << " in memory; computing exactly out of core (temporary files in "
-                << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
-      out_of_core = true;
-    }
+  if (!stream && exact_needs_out_of_core(args.log, memory)) {
+    std::cerr << "sigmatau: " << args.log.input << " needs more than --memory " << args.memory
+              << " in memory; computing exactly out of core (temporary files in "
+              << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
+    out_of_core = true;
   }
   LoadedChannels loaded;
   std::size_t samples = 0;

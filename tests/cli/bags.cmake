@@ -129,6 +129,15 @@ sigmatau_cli_test(NAME cli_bags_reorder_beyond_window EXIT 2
   STDERR "shuffled\\.bag: message at byte offset [0-9]+ .*on /imu/data: its header stamp is 0\\.02 s before the latest stamp seen: .*reorder window \\(3 messages\\).*--reorder-window"
   ARGS adev ${bag_dir}/shuffled.bag --reorder-window 3)
 list(APPEND bag_tests cli_bags_reorder_sorted_and_reported cli_bags_reorder_beyond_window)
+# --gaps split needs the whole log in memory even when the bag is larger than --memory (out of
+# core cannot split): imu_gap.bag (1000 messages missing) with --memory 1K gives the in-memory
+# split table, byte for byte.
+add_test(NAME cli_bags_gap_split_stays_in_memory
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
+                 "-DARGS_A=adev@@${bag_dir}/imu_gap.bag@@--gaps@@split@@--memory@@1K@@--format@@csv"
+                 "-DARGS_B=adev@@${bag_dir}/imu_gap.bag@@--gaps@@split@@--format@@csv"
+                 -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
+list(APPEND bag_tests cli_bags_gap_split_stays_in_memory)
 
 # calibrate reads a bag too: a simulated 16-position log converted to a ROS 1 bag (and to CSV with
 # the same ns stamps and doubles) gives the same calibration table from either.

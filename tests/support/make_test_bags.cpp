@@ -295,6 +295,12 @@ int main(int argc, char** argv) {
     write_ros1((dir / "imu_unindexed.bag").string(), m, Ros1BagWriter::Compression::bz2, false);
     write_csv((dir / "imu.csv").string(), m);
     {
+      // A recorder that stalled: 1000 messages missing in the middle (a stamp gap).
+      auto gapped = m;
+      gapped.erase(gapped.begin() + 5000, gapped.begin() + 6000);
+      write_ros1((dir / "imu_gap.bag").string(), gapped, Ros1BagWriter::Compression::none, true);
+    }
+    {
       Ros1BagWriter w((dir / "two_imu.bag").string(), {});
       const auto a = w.add_connection("/imu/a", "sensor_msgs/Imu");
       const auto b = w.add_connection("/imu/b", "sensor_msgs/Imu");
