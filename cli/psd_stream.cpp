@@ -7,6 +7,7 @@
 #include <system_error>
 #include <utility>
 
+#include "sigmatau/allan_segments.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
 
@@ -141,13 +142,30 @@ void check_phase_length(DataKind kind, std::int64_t rows) {
   if (kind == DataKind::phase && rows < 2) throw Error("phase input needs at least two samples");
 }
 
-/// --gaps fill: the whole log in memory (fill_gaps), then welch_psd per channel.
+/// --gaps fill and split: the whole log in memory (fill_gaps, or the segments the reader found),
+/// then welch_psd per channel; with split segments, Welch windows stay inside one segment
+/// (welch_psd_stretches), as in analyze.
 LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
   LogPsd out;
   out.input = load_channels(args);
   LoadedChannels& loaded = out.input;
   check_phase_length(loaded.kind, static_cast<std::int64_t>(loaded.log.channels.front().size()));
+  const std::vector<std::int64_t>& starts = loaded.log.timing.segment_starts;
   for (auto& channel : loaded.log.channels) {
+    if (starts.size() > 1) {
+      std::vector<std::vector<double>> rates;
+      for (std::size_t k = 0; k < starts.size(); ++k) {
+        const auto end = k + 1 < starts.size() ? starts[k + 1]
+                                               : static_cast<std::int64_t>(channel.size());
+        std::vector<double> part(channel.begin() + starts[k], channel.begin() + end);
+        if (loaded.kind == DataKind::phase && part.size() < 2) continue;  // no rate sample
+        rates.push_back(rate_samples(std::move(part), loaded.kind, loaded.rate_hz));
+      }
+      std::vector<double>().swap(channel);
+      const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());
+      out.curves.push_back(welch_psd_stretches(stretches, loaded.rate_hz, welch));
+      continue;
+    }
     const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
     std::vector<double>().swap(channel);
     out.curves.push_back(welch_psd(rate, loaded.rate_hz, welch));
@@ -255,7 +273,8 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
 
 LogPsd log_psd(const LogArguments& args, const WelchOptions& welch, std::int64_t memory_bytes) {
   const LogOptions options = log_options_from(args);
-  if (options.gaps == GapPolicy::fill) return in_memory_psd(args, welch);
+  if (options.gaps == GapPolicy::fill || options.gaps == GapPolicy::split)
+    return in_memory_psd(args, welch);
   std::optional<std::int64_t> known_rows;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     std::int64_t recount = 0;

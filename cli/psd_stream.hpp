@@ -18,7 +18,8 @@ struct LogPsd {
 /// Welch PSD (`welch`; segment_length 0 = default_segment_length of the rate series' length) of
 /// the rate series of every channel: increments x rate, phase differenced x rate. The numbers
 /// are those of welch_psd on the whole series in memory, bit for bit (same segments). How:
-/// - --gaps fill needs the whole log (fill_gaps): read into memory as before.
+/// - --gaps fill and split need the whole log (fill_gaps; the segments, Welch windows inside
+///   one): read into memory as before.
 /// - Otherwise the log is read block by block into a WelchAccumulator per channel. Until the
 ///   segment length is known the blocks are held, at most `memory_bytes` of them: the length is
 ///   known from --segment, from the row count the input states (a raw binary file's size, a ROS

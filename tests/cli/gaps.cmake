@@ -51,6 +51,13 @@ sigmatau_cli_test(NAME cli_gaps_report_spans_the_gap EXIT 0
 sigmatau_cli_test(NAME cli_gaps_split_json EXIT 0
   STDOUT "\"segment_starts\": \\[[^0-9]*0,[^0-9]*1000[^0-9]*\\]"
   ARGS adev ${gap_log} --time-column t_ms --time-unit ms --gaps split --format json)
+# psd with split: Welch windows stay inside a segment. 128-sample windows at 50 % overlap fit
+# (1000 - 128) / 64 + 1 = 14 times in the first segment and (600 - 128) / 64 + 1 = 8 in the
+# second: 22 windows, where the contiguous 1600 samples (report) hold 24, two across the gap.
+sigmatau_cli_test(NAME cli_gaps_split_psd EXIT 0 STDOUT "\"segments\": 22,"
+  ARGS psd ${gap_log} --time-column t_ms --time-unit ms --gaps split --segment 128 --format json)
+sigmatau_cli_test(NAME cli_gaps_report_psd_spans_the_gap EXIT 0 STDOUT "\"segments\": 24,"
+  ARGS psd ${gap_log} --time-column t_ms --time-unit ms --gaps report --segment 128 --format json)
 sigmatau_cli_test(NAME cli_gaps_split_needs_exact EXIT 2 STDERR "--gaps split needs --mode exact"
   ARGS adev ${gap_log} --time-column t_ms --time-unit ms --gaps split --mode stream)
 
