@@ -6,35 +6,16 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 
+#include "phase_spill.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::detail {
-namespace {
 
-std::string directory_or_tmp(const std::string& directory) {
-  if (!directory.empty()) return directory;
-  const char* tmp = std::getenv("TMPDIR");
-  return tmp && *tmp ? tmp : "/tmp";
-}
-
-}  // namespace
-
-ValueSpill::ValueSpill(const std::string& directory) : directory_(directory_or_tmp(directory)) {
-#if defined(O_TMPFILE)
-  fd_ = open(directory_.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
-#endif
-  if (fd_ < 0) {
-    std::string name = directory_ + "/sigmatau-values-XXXXXX";
-    fd_ = mkostemp(name.data(), O_CLOEXEC);
-    if (fd_ < 0) {
-      throw Error("cannot create a temporary file in " + directory_ + " for the log's values: " +
-                  std::strerror(errno) + " (choose another directory with TMPDIR)");
-    }
-    unlink(name.c_str());
-  }
+ValueSpill::ValueSpill(const std::string& directory)
+    : directory_(temporary_directory(directory)) {
+  fd_ = open_unlinked_temporary(directory_, "values");
   buffer_.reserve(static_cast<std::size_t>(kReadValues));
 }
 

@@ -15,13 +15,38 @@
 
 #include "sigmatau/error.hpp"
 
-#if defined(__linux__)
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
+
+#if defined(__linux__)
+#include <sys/mman.h>
 #endif
 
 namespace sigmatau::detail {
+
+std::string temporary_directory(const std::string& directory) {
+  if (!directory.empty()) return directory;
+  const char* tmp = std::getenv("TMPDIR");
+  return tmp && *tmp ? tmp : "/tmp";
+}
+
+int open_unlinked_temporary(const std::string& directory, const std::string& what) {
+  int fd = -1;
+#if defined(O_TMPFILE)
+  fd = open(directory.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+#endif
+  if (fd < 0) {
+    std::string name = directory + "/sigmatau-" + what + "-XXXXXX";
+    fd = mkostemp(name.data(), O_CLOEXEC);
+    if (fd < 0) {
+      throw Error("cannot create a temporary file in " + directory + " for the " + what + ": " +
+                  std::strerror(errno) + " (choose another directory with TMPDIR)");
+    }
+    unlink(name.c_str());
+  }
+  return fd;
+}
+
 namespace {
 
 #if defined(__linux__)
@@ -113,26 +138,12 @@ class PageReleaser {
 };
 
 std::string spill_directory(const PhaseStorage& storage) {
-  if (!storage.directory.empty()) return storage.directory;
-  const char* tmp = std::getenv("TMPDIR");
-  return tmp && *tmp ? tmp : "/tmp";
+  return temporary_directory(storage.directory);
 }
 
 /// An unlinked file of `bytes` bytes in `dir`, with its blocks reserved.
 int open_spill_file(const std::string& dir, std::size_t bytes) {
-  int fd = -1;
-#if defined(O_TMPFILE)
-  fd = open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
-#endif
-  if (fd < 0) {
-    std::string name = dir + "/sigmatau-phase-XXXXXX";
-    fd = mkostemp(name.data(), O_CLOEXEC);
-    if (fd < 0) {
-      throw Error("cannot create a temporary file in " + dir + " for the phase: " +
-                  std::strerror(errno) + " (choose another directory with TMPDIR)");
-    }
-    unlink(name.c_str());
-  }
+  const int fd = open_unlinked_temporary(dir, "phase");
   const int rc = posix_fallocate(fd, 0, static_cast<off_t>(bytes));
   if (rc != 0) {
     close(fd);

@@ -51,6 +51,14 @@ class DoubleBuffer {
 /// thread is not scheduled for a while (a loaded machine). Costs one read of /proc/self/statm.
 void enforce_spill_budget();
 
+/// The directory for temporary files: `directory` when given, else $TMPDIR, else /tmp.
+std::string temporary_directory(const std::string& directory);
+
+/// A read-write file in `directory` that has no name (O_TMPFILE, else mkostemp and unlink), so
+/// the kernel frees it when the descriptor is closed, whatever way the process ends. `what`
+/// names its content in the Error thrown when it cannot be created ("phase", "values").
+int open_unlinked_temporary(const std::string& directory, const std::string& what);
+
 /// File-backed resident bytes of this process (RssFile + RssShmem from /proc/self/statm), or -1
 /// where that is not available.
 std::int64_t file_resident_bytes();
