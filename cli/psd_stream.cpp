@@ -10,6 +10,7 @@
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
+#include "sigmatau/rate_series.hpp"
 
 namespace sigmatau::cli {
 namespace {
@@ -21,12 +22,6 @@ constexpr std::int64_t kRateStamps = 100001;
 /// Read passes at most (the first, a count of rows, one more when a stated count was wrong):
 /// a file that keeps changing length between passes is an Error rather than a loop.
 constexpr int kMaxPasses = 3;
-
-/// Rate samples of a log of `rows` rows: a phase log has one fewer.
-std::int64_t rate_count(std::int64_t rows, DataKind kind) {
-  if (kind != DataKind::phase) return rows;
-  return rows > 0 ? rows - 1 : 0;
-}
 
 /// The smallest sample count whose default segment length is the longest one
 /// default_segment_length gives (2^23 for its cap of 2^20): from there on the length no longer
@@ -92,51 +87,22 @@ std::int64_t count_rows(const LogOptions& options) {
 class ChannelFeed {
  public:
   ChannelFeed(double rate_hz, const WelchOptions& welch, DataKind kind, double to_si)
-      : accumulator_(rate_hz, welch), rate_hz_(rate_hz), kind_(kind), to_si_(to_si) {}
+      : accumulator_(rate_hz, welch), rates_(kind, rate_hz), to_si_(to_si) {}
 
   void add(std::vector<double>& values) {
     if (to_si_ != 1.0) {
       for (double& v : values) v *= to_si_;
     }
-    if (kind_ == DataKind::increment) {
-      for (double& v : values) v *= rate_hz_;
-    } else if (kind_ == DataKind::phase) {
-      differences_.clear();
-      for (const double x : values) {
-        if (has_previous_) differences_.push_back((x - previous_) * rate_hz_);
-        previous_ = x;
-        has_previous_ = true;
-      }
-      accumulator_.add(differences_);
-      return;
-    }
-    accumulator_.add(values);
+    accumulator_.add(rates_.convert(values));
   }
 
   PsdCurve result() const { return accumulator_.result(); }
 
  private:
   WelchAccumulator accumulator_;
-  double rate_hz_;
-  DataKind kind_;
+  RateStream rates_;
   double to_si_;
-  bool has_previous_ = false;
-  double previous_ = 0;
-  std::vector<double> differences_;
 };
-
-/// The rate series of a channel in memory (in SI when --unit was given).
-std::vector<double> rate_samples(std::vector<double> values, DataKind kind, double rate_hz) {
-  if (kind == DataKind::increment) {
-    for (double& v : values) v *= rate_hz;
-  } else if (kind == DataKind::phase) {
-    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
-      values[i] = (values[i + 1] - values[i]) * rate_hz;
-    }
-    values.pop_back();
-  }
-  return values;
-}
 
 void check_phase_length(DataKind kind, std::int64_t rows) {
   if (kind == DataKind::phase && rows < 2) throw Error("phase input needs at least two samples");
@@ -159,14 +125,14 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
                                                : static_cast<std::int64_t>(channel.size());
         std::vector<double> part(channel.begin() + starts[k], channel.begin() + end);
         if (loaded.kind == DataKind::phase && part.size() < 2) continue;  // no rate sample
-        rates.push_back(rate_samples(std::move(part), loaded.kind, loaded.rate_hz));
+        rates.push_back(to_rate_series(std::move(part), loaded.kind, loaded.rate_hz));
       }
       std::vector<double>().swap(channel);
       const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());
       out.curves.push_back(welch_psd_stretches(stretches, loaded.rate_hz, welch));
       continue;
     }
-    const auto rate = rate_samples(std::move(channel), loaded.kind, loaded.rate_hz);
+    const auto rate = to_rate_series(std::move(channel), loaded.kind, loaded.rate_hz);
     std::vector<double>().swap(channel);
     out.curves.push_back(welch_psd(rate, loaded.rate_hz, welch));
   }

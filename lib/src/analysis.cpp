@@ -18,6 +18,7 @@
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/units.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/rate_series.hpp"
 #include "sigmatau/warmup.hpp"
 
 namespace sigmatau {
@@ -29,18 +30,6 @@ std::string lower(std::string_view s) {
   std::string out;
   for (char c : s) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
-}
-
-/// The rate series of a channel (PSD and warm-up work on rates).
-std::vector<double> as_rate(const std::vector<double>& values, DataKind kind, double rate_hz) {
-  std::vector<double> rate = values;
-  if (kind == DataKind::increment) {
-    for (double& v : rate) v *= rate_hz;
-  } else if (kind == DataKind::phase) {
-    for (std::size_t i = 0; i + 1 < rate.size(); ++i) rate[i] = (rate[i + 1] - rate[i]) * rate_hz;
-    if (!rate.empty()) rate.pop_back();
-  }
-  return rate;
 }
 
 }  // namespace
@@ -127,7 +116,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   if (options.trim == TrimMode::automatic) {
     std::vector<std::vector<double>> rates;
     std::vector<std::span<const double>> spans;
-    for (const auto& c : input.channels) rates.push_back(as_rate(c.values, input.kind, input.rate_hz));
+    for (const auto& c : input.channels) rates.push_back(to_rate_series(c.values, input.kind, input.rate_hz));
     for (const auto& r : rates) spans.emplace_back(r);
     const WarmupDecision d = detect_warmup(spans, input.rate_hz);
     trim_samples = d.trim_samples;
@@ -201,12 +190,12 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     std::vector<std::vector<double>> rates;
     if (split) {
       for (const auto& r : segments) {
-        const std::vector<double> part(channel.values.begin() + r.begin,
-                                       channel.values.begin() + r.end);
-        rates.push_back(as_rate(part, input.kind, input.rate_hz));
+        std::vector<double> part(channel.values.begin() + r.begin,
+                                 channel.values.begin() + r.end);
+        rates.push_back(to_rate_series(std::move(part), input.kind, input.rate_hz));
       }
     } else {
-      rates.push_back(as_rate(channel.values, input.kind, input.rate_hz));
+      rates.push_back(to_rate_series(channel.values, input.kind, input.rate_hz));
     }
     try {
       const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());

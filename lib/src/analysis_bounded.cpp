@@ -27,45 +27,13 @@
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/units.hpp"
+#include "sigmatau/rate_series.hpp"
 #include "sigmatau/warmup.hpp"
 
 namespace sigmatau {
 namespace {
 
 using nlohmann::json;
-
-/// Turns values arriving in pieces into the rates as_rate (analysis.cpp) gives on the whole
-/// series: increments x rate_hz; phase: (x[i+1] - x[i]) x rate_hz (one fewer); rates as they are.
-class RateStream {
- public:
-  RateStream(DataKind kind, double rate_hz) : kind_(kind), rate_hz_(rate_hz) {}
-  std::span<const double> convert(std::span<const double> values) {
-    if (kind_ == DataKind::rate) return values;
-    out_.clear();
-    if (kind_ == DataKind::increment) {
-      for (const double v : values) out_.push_back(v * rate_hz_);
-    } else {
-      for (const double v : values) {
-        if (have_previous_) out_.push_back((v - previous_) * rate_hz_);
-        previous_ = v;
-        have_previous_ = true;
-      }
-    }
-    return out_;
-  }
-
- private:
-  DataKind kind_;
-  double rate_hz_;
-  std::vector<double> out_;
-  double previous_ = 0;
-  bool have_previous_ = false;
-};
-
-/// Rate samples of a series of n values.
-std::int64_t rate_count(std::int64_t n, DataKind kind) {
-  return kind == DataKind::phase ? std::max<std::int64_t>(n - 1, 0) : n;
-}
 
 /// Pass 1's data checks, fed block by block; warnings() gives run_analysis's, in its order.
 class StreamingChecks {
