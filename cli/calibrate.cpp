@@ -5,7 +5,9 @@
 #include <numbers>
 
 #include "log_options.hpp"
+#include "memory_budget.hpp"
 #include "sigmatau/calibrate.hpp"
+#include "sigmatau/calibrate_log.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/simulate.hpp"
@@ -27,43 +29,30 @@ struct CalibrateArguments {
   std::string format = "table";
   std::string output;
   bool force = false;
+  std::string memory = "256MiB";
 };
 
-std::size_t find_column(const Log& log, const std::string& name, const std::string& option) {
-  for (std::size_t i = 0; i < log.channel_names.size(); ++i)
-    if (log.channel_names[i] == name) return i;
+std::size_t find_column(const std::vector<std::string>& channel_names, const std::string& path,
+                        const std::string& name, const std::string& option) {
+  for (std::size_t i = 0; i < channel_names.size(); ++i)
+    if (channel_names[i] == name) return i;
   std::string known;
-  for (const auto& n : log.channel_names) known += (known.empty() ? "" : ", ") + n;
-  throw Error(log.path + ": no column '" + name + "' (" + option + "); the log has: " + known);
+  for (const auto& n : channel_names) known += (known.empty() ? "" : ", ") + n;
+  throw Error(path + ": no column '" + name + "' (" + option + "); the log has: " + known);
 }
 
-void run_calibrate(const CalibrateArguments& a) {
-  if (a.format != "table" && a.format != "json")
-    throw Error("--format must be table or json, got '" + a.format + "'");
-  if (!a.log.unit.empty())
-    throw Error("calibrate: use --gyro-unit and --accel-unit instead of --unit");
-  if (!a.output.empty()) check_can_write(a.output, a.force);
-  LoadedChannels loaded = load_channels(a.log);
-  if (loaded.kind == DataKind::phase)
-    throw Error("calibrate: --kind must be rate or increment");
-  Log& log = loaded.log;
-  std::vector<double>().swap(log.t_s);  // calibrate works on sample indices / rate
-  // The columns move into the calibration input (no second copy of the log); a column named
-  // twice is copied from where it went.
-  std::vector<std::vector<double>*> moved_to(log.channels.size(), nullptr);
-  const auto take = [&](std::size_t column, std::vector<double>& into) {
-    if (moved_to[column]) {
-      into = *moved_to[column];
-    } else {
-      into = std::move(log.channels[column]);
-      moved_to[column] = &into;
-    }
-  };
-  const auto column_values = [&](std::size_t column) -> const std::vector<double>& {
-    return moved_to[column] ? *moved_to[column] : log.channels[column];
-  };
+/// Which input column feeds each channel of the calibration rows, and the factors to SI.
+struct ColumnPlan {
+  std::vector<std::size_t> column;  // per row value: ax ay az [gx gy gz] [temp]
+  bool gyro = false, temperature = false;
+  double accel_factor = 1, gyro_factor = 1;
+  Unit temp_unit, kelvin;  // temperature: (v * factor + offset - K offset) / K factor (convert())
+};
+
+ColumnPlan plan_columns(const CalibrateArguments& a, const std::vector<std::string>& channel_names,
+                        bool increments) {
   const auto has = [&](const std::string& n) {
-    for (const auto& c : log.channel_names)
+    for (const auto& c : channel_names)
       if (c == n) return true;
     return false;
   };
@@ -77,42 +66,109 @@ void run_calibrate(const CalibrateArguments& a) {
     }
     return out;
   };
-  CalibrationInput in;
-  in.rate_hz = loaded.rate_hz;
-  in.increments = loaded.kind == DataKind::increment;
-  const Dimension accel_dim = in.increments ? dim::velocity : dim::acceleration;
-  const Dimension gyro_dim = in.increments ? dim::angle : dim::angular_rate;
-  const std::string accel_unit = in.increments && a.accel_unit == "m/s^2" ? "m/s" : a.accel_unit;
-  const std::string gyro_unit = in.increments && a.gyro_unit == "rad/s" ? "rad" : a.gyro_unit;
-  const double accel_factor = parse_unit_as(accel_unit, accel_dim, "--accel-unit").factor;
-  const auto accel_names = names(a.accel_columns, "a", "--accel");
-  for (int i = 0; i < 3; ++i) {
-    take(find_column(log, accel_names[static_cast<std::size_t>(i)], "--accel"),
-         in.accel[static_cast<std::size_t>(i)]);
-  }
+  ColumnPlan plan;
+  const Dimension accel_dim = increments ? dim::velocity : dim::acceleration;
+  const Dimension gyro_dim = increments ? dim::angle : dim::angular_rate;
+  const std::string accel_unit = increments && a.accel_unit == "m/s^2" ? "m/s" : a.accel_unit;
+  const std::string gyro_unit = increments && a.gyro_unit == "rad/s" ? "rad" : a.gyro_unit;
+  plan.accel_factor = parse_unit_as(accel_unit, accel_dim, "--accel-unit").factor;
+  for (const auto& n : names(a.accel_columns, "a", "--accel"))
+    plan.column.push_back(find_column(channel_names, a.log.input, n, "--accel"));
   const auto gyro_names = names(a.gyro_columns, "g", "--gyro");
-  double gyro_factor = 1;
   if (!a.gyro_columns.empty() || has(gyro_names[0])) {
-    gyro_factor = parse_unit_as(gyro_unit, gyro_dim, "--gyro-unit").factor;
-    for (int i = 0; i < 3; ++i) {
-      take(find_column(log, gyro_names[static_cast<std::size_t>(i)], "--gyro"),
-           in.gyro[static_cast<std::size_t>(i)]);
-    }
+    plan.gyro = true;
+    plan.gyro_factor = parse_unit_as(gyro_unit, gyro_dim, "--gyro-unit").factor;
+    for (const auto& n : gyro_names)
+      plan.column.push_back(find_column(channel_names, a.log.input, n, "--gyro"));
   }
   const std::string temp = a.temp_column.empty() ? "temp" : a.temp_column;
   if (!a.temp_column.empty() || has(temp)) {
-    const auto& column = column_values(find_column(log, temp, "--temp-column"));
-    const std::string unit = a.temp_unit;
-    in.temperature_k.reserve(column.size());
-    for (double v : column) in.temperature_k.push_back(convert(v, unit, "K"));
+    plan.temperature = true;
+    plan.column.push_back(find_column(channel_names, a.log.input, temp, "--temp-column"));
+    convert(0.0, a.temp_unit, "K");  // throws the unit error, as converting each value would
+    plan.temp_unit = parse_unit(a.temp_unit);
+    plan.kelvin = parse_unit("K");
   }
-  for (auto& channel : log.channels) std::vector<double>().swap(channel);  // the columns not used
-  for (auto& axis : in.accel) {
-    for (double& v : axis) v *= accel_factor;
+  return plan;
+}
+
+/// Appends the rows of a block (values[column][row]) to the calibration log, in SI.
+void append_rows(const ColumnPlan& plan, const std::vector<std::vector<double>>& values,
+                 CalibrationLog& log, std::vector<double>& row_buffer) {
+  const std::size_t rows = values.empty() ? 0 : values[0].size();
+  const std::size_t c = plan.column.size();
+  row_buffer.resize(rows * c);
+  for (std::size_t r = 0; r < rows; ++r) {
+    double* out = row_buffer.data() + r * c;
+    for (std::size_t k = 0; k < 3; ++k) out[k] = values[plan.column[k]][r] * plan.accel_factor;
+    if (plan.gyro)
+      for (std::size_t k = 3; k < 6; ++k) out[k] = values[plan.column[k]][r] * plan.gyro_factor;
+    if (plan.temperature) {
+      const double v = values[plan.column[c - 1]][r];
+      out[c - 1] = (v * plan.temp_unit.factor + plan.temp_unit.offset - plan.kelvin.offset) /
+                   plan.kelvin.factor;
+    }
   }
-  for (auto& axis : in.gyro) {
-    for (double& v : axis) v *= gyro_factor;
+  log.append(row_buffer);
+}
+
+void run_calibrate(const CalibrateArguments& a) {
+  if (a.format != "table" && a.format != "json")
+    throw Error("--format must be table or json, got '" + a.format + "'");
+  if (!a.log.unit.empty())
+    throw Error("calibrate: use --gyro-unit and --accel-unit instead of --unit");
+  if (!a.output.empty()) check_can_write(a.output, a.force);
+  const std::int64_t memory = parse_bytes(a.memory);
+  if (parse_data_kind(a.log.kind) == DataKind::phase)
+    throw Error("calibrate: --kind must be rate or increment");
+  const bool increments = parse_data_kind(a.log.kind) == DataKind::increment;
+  const LogOptions options = log_options_from(a.log);
+  // The rows go into a CalibrationLog: in memory up to --memory, beyond it in a temporary file.
+  // --gaps fill needs the whole log in memory to interpolate (read_log), as the other verbs do.
+  std::unique_ptr<CalibrationLog> log;
+  double rate_hz = 0;
+  std::vector<double> row_buffer;
+  const auto start = [&](const std::vector<std::string>& channel_names) {
+    const ColumnPlan plan = plan_columns(a, channel_names, increments);
+    log = std::make_unique<CalibrationLog>(plan.gyro, plan.temperature, memory);
+    return plan;
+  };
+  bool noted = false;
+  const auto note_spill = [&] {
+    if (noted || !log->spilled()) return;
+    noted = true;
+    std::cerr << "sigmatau: note: " << a.log.input << ": more than --memory " << a.memory
+              << " of samples; keeping them in a temporary file in " << log->directory()
+              << " (bounded memory, the same results)\n";
+  };
+  if (options.gaps == GapPolicy::fill) {
+    LoadedChannels loaded = load_channels(a.log);
+    const ColumnPlan plan = start(loaded.log.channel_names);
+    append_rows(plan, loaded.log.channels, *log, row_buffer);
+    rate_hz = loaded.rate_hz;
+  } else {
+    LogReader reader(options);
+    const ColumnPlan plan = start(reader.channel_names());
+    Progress progress;
+    SampleBlock block;
+    while (reader.read_block(block)) {
+      append_rows(plan, block.values, *log, row_buffer);
+      progress.update(reader.bytes_read(), reader.total_bytes());
+    }
+    progress.finish();
+    const TimingReport& timing = reader.timing();
+    note_reading(a.log, options, timing);
+    if (log->rows() == 0) {
+      throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
+                       "no samples: the input holds no data rows" +
+                           std::string(timing.rows_skipped_nonfinite > 0
+                                           ? " (every row held a non-finite value and was skipped)"
+                                           : ""));
+    }
+    rate_hz = resolve_rate_hz(a.log.rate_hz, timing, a.log.input);
   }
+  std::vector<double>().swap(row_buffer);
+  note_spill();
   CalibrationOptions o;
   if (a.gravity && a.latitude_deg)
     throw Error("give --gravity or --latitude, not both (--latitude sets the normal gravity)");
@@ -131,7 +187,7 @@ void run_calibrate(const CalibrateArguments& a) {
       throw Error("--reference-temperature: expected a temperature, e.g. \"25 degC\"");
     o.reference_temperature_k = q.value_si;
   }
-  const CalibrationResult result = calibrate(in, o);
+  const CalibrationResult result = calibrate(*log, rate_hz, increments, o);
   const std::string text = a.format == "json" ? calibration_json(result) : calibration_table(result);
   if (a.output.empty()) {
     std::cout << text;
@@ -172,6 +228,11 @@ void add_calibrate_command(CLI::App& app) {
   command->add_option("--format", args->format, "table | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");
+  command->add_option("--memory", args->memory,
+                      "memory for the samples, e.g. 1GiB: beyond it they are kept in a temporary "
+                      "file (TMPDIR) and read back (same results); the calibration itself needs "
+                      "a few tens of MiB more")
+      ->capture_default_str();
   command->callback([args] { run_calibrate(*args); });
 }
 

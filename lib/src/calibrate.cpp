@@ -135,17 +135,29 @@ void fill_accel_temperature(const detail::AccelFit& f, double confidence,
   }
 }
 
-}  // namespace
-
-CalibrationResult calibrate(const CalibrationInput& in, const CalibrationOptions& o) {
+void check_options(const CalibrationOptions& o) {
   if (!(o.gravity > 0) || !std::isfinite(o.gravity)) throw Error("calibrate: gravity must be > 0");
   if (!(o.confidence > 0 && o.confidence < 1))
     throw Error("calibrate: the confidence level must be in (0, 1)");
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const CalibrationInput& in, const CalibrationOptions& o) {
+  check_options(o);
+  if (!(in.rate_hz > 0) || !std::isfinite(in.rate_hz))
+    throw Error("calibrate: the sample rate must be > 0 Hz");
+  return detail::calibrate_samples(detail::InputSamples(in), o);
+}
+
+CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
+                                            const CalibrationOptions& o) {
+  check_options(o);
   CalibrationResult res;
   res.gravity = o.gravity;
   res.confidence = o.confidence;
   res.reference_temperature_k = o.reference_temperature_k;
-  res.detection = detect_static_intervals(in, o);
+  res.detection = detail::detect_static(in, o);
   const auto& iv = res.detection.intervals;
   char text[256];
   if (iv.empty()) {
@@ -202,7 +214,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const CalibrationOptions
   }
   // Temperature.
   const double t0 = o.reference_temperature_k;
-  res.has_temperature = !in.temperature_k.empty();
+  res.has_temperature = in.has_temperature();
   bool use_temperature = false;
   if (res.has_temperature) {
     res.temperature_min_k = res.temperature_max_k = iv[0].temperature_k;
@@ -240,7 +252,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const CalibrationOptions
     res.accel.temperature = accel_axes;
   }
   res.accel.note = accel_note;
-  if (in.gyro[0].empty()) return res;
+  if (!in.has_gyro()) return res;
 
   // Gyroscope: a first bias model with G = I, the matrix from the rotations (which needs the
   // bias to separate it from the Earth rate in each static reading), then the final bias model.

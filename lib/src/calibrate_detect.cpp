@@ -1,4 +1,7 @@
-// Static-interval detector for multi-position calibration (calibrate.hpp).
+// Static-interval detector for multi-position calibration (calibrate.hpp), streaming over the
+// samples in three passes (the floors, the runs and their means, the covariances of the runs), so
+// that a log in a temporary file (calibrate_log.hpp) is never held in memory; the sums are taken
+// in the order of the former whole-log code, so the intervals are the same to the last bit.
 //
 // Glossary: w window length [samples], h = (w-1)/2; s_i the window statistic at sample i (sum over
 // the three axes of the variance of the samples i-h..i+h); floor the 25th percentile of s over the
@@ -30,100 +33,131 @@ constexpr int kBatches = 10;
 /// < 1 %), while a slow turn of the gravity direction raises it by orders of magnitude.
 constexpr double kMaxBatchRatio = 10;
 
-using Triad = std::array<std::vector<double>, 3>;
+/// Values of sample r of `rows` converted for the detector: accelerometer and gyroscope as
+/// rates (increments times the rate, as the whole-log code did), temperature as stored.
+struct Converted {
+  std::array<double, 7> v{};
+};
 
-/// Window statistic per sample (NaN where the window does not fit).
-std::vector<double> window_statistic(const Triad& x, std::int64_t w) {
-  const auto n = static_cast<std::int64_t>(x[0].size());
-  std::vector<double> s(static_cast<std::size_t>(n), std::nan(""));
+Converted converted(const detail::SampleRows& rows, std::int64_t r, bool gyro, bool temperature,
+                    bool increments, double rate_hz) {
+  Converted c;
+  for (int a = 0; a < 3; ++a) {
+    const auto ua = static_cast<std::size_t>(a);
+    c.v[ua] = rows.value(detail::kAccelChannel + a, r);
+    if (increments) c.v[ua] *= rate_hz;
+    if (gyro) {
+      c.v[3 + ua] = rows.value(detail::kGyroChannel + a, r);
+      if (increments) c.v[3 + ua] *= rate_hz;
+    }
+  }
+  if (temperature) c.v[6] = rows.value(detail::kTemperatureChannel, r);
+  return c;
+}
+
+/// First invalid sample of each kind (-1: none), found while streaming; reported in the order
+/// accelerometer, gyroscope, temperature.
+struct Invalid {
+  std::int64_t accel = -1, gyro = -1, temperature = -1;
+  void check(const Converted& c, std::int64_t i, bool gyro_present, bool temperature_present) {
+    for (int a = 0; a < 3; ++a) {
+      if (accel < 0 && !std::isfinite(c.v[static_cast<std::size_t>(a)])) accel = i;
+      if (gyro_present && gyro < 0 && !std::isfinite(c.v[static_cast<std::size_t>(3 + a)])) gyro = i;
+    }
+    if (temperature_present && temperature < 0 && !(c.v[6] > 0 && std::isfinite(c.v[6])))
+      temperature = i;
+  }
+  void raise() const {
+    const auto at = [](std::int64_t i) { return std::to_string(i + 1); };
+    if (accel >= 0) throw Error("calibrate: non-finite accelerometer value at sample " + at(accel));
+    if (gyro >= 0) throw Error("calibrate: non-finite gyroscope value at sample " + at(gyro));
+    if (temperature >= 0)
+      throw Error("calibrate: temperatures must be finite and > 0 K (check --temp-unit)");
+  }
+};
+
+/// Streams every sample once: calls sample(i, c) on each sample converted, and statistic(i, sa,
+/// sg) for i in [h, n-h) (sg 0 without gyroscope), in ascending i, statistic before sample for
+/// the same i never assumed (they are independent).
+template <class OnSample, class OnStatistic>
+void stream_statistics(const detail::CalibrationSamples& in, std::int64_t w, OnSample&& sample,
+                       OnStatistic&& statistic) {
+  const bool gyro = in.has_gyro(), temperature = in.has_temperature();
   const std::int64_t h = (w - 1) / 2;
-  for (int axis = 0; axis < 3; ++axis) {
-    const auto& v = x[static_cast<std::size_t>(axis)];
-    // Centre on the first value to keep the running sums well conditioned.
-    const double c = v.empty() ? 0 : v[0];
-    std::vector<double> s1(static_cast<std::size_t>(n + 1), 0.0), s2(s1);
-    for (std::int64_t i = 0; i < n; ++i) {
-      const double d = v[static_cast<std::size_t>(i)] - c;
-      s1[static_cast<std::size_t>(i + 1)] = s1[static_cast<std::size_t>(i)] + d;
-      s2[static_cast<std::size_t>(i + 1)] = s2[static_cast<std::size_t>(i)] + d * d;
+  detail::WindowStatistic wa(w), wg(w);
+  in.for_each(0, in.rows(), [&](const detail::SampleRows& rows) {
+    for (std::int64_t r = 0; r < rows.count; ++r) {
+      const std::int64_t i = rows.first + r;
+      const Converted c = converted(rows, r, gyro, temperature, in.increments(), in.rate_hz());
+      sample(i, c);
+      const bool ready = wa.push(c.v.data(), 1);
+      if (gyro) wg.push(c.v.data() + 3, 1);
+      if (ready) statistic(i - h, wa.value(), gyro ? wg.value() : 0.0);
     }
-    const double len = static_cast<double>(2 * h + 1);
-    for (std::int64_t i = h; i + h < n; ++i) {
-      const auto a = static_cast<std::size_t>(i - h), b = static_cast<std::size_t>(i + h + 1);
-      const double m = (s1[b] - s1[a]) / len;
-      const double var = std::max(0.0, ((s2[b] - s2[a]) - len * m * m) / (len - 1));
-      double& out = s[static_cast<std::size_t>(i)];
-      out = (axis == 0 ? 0.0 : out) + var;
-    }
-  }
-  return s;
+  });
 }
 
-double quantile_of(std::vector<double> v, double q) {
-  std::erase_if(v, [](double x) { return std::isnan(x); });
-  if (v.empty()) return std::nan("");
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
+/// A run of static samples with the sums of its means (same order as the whole-log code).
+struct Run {
+  std::int64_t first = 0, last = 0;
+  Eigen::Vector3d accel_sum = Eigen::Vector3d::Zero(), gyro_sum = Eigen::Vector3d::Zero();
+  double temperature_sum = 0;
+};
 
-void mean_and_cov(const Triad& x, std::int64_t first, std::int64_t last, Eigen::Vector3d& mean,
-                  Eigen::Matrix3d& sample_cov) {
-  const auto n = static_cast<double>(last - first + 1);
-  mean.setZero();
-  for (std::int64_t i = first; i <= last; ++i)
-    for (int a = 0; a < 3; ++a) mean[a] += x[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)];
-  mean /= n;
-  sample_cov.setZero();
-  for (std::int64_t i = first; i <= last; ++i) {
-    Eigen::Vector3d d;
-    for (int a = 0; a < 3; ++a)
-      d[a] = x[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)] - mean[a];
-    sample_cov += d * d.transpose();
-  }
-  sample_cov /= (n - 1);
+/// Covariance and batch sums of one candidate interval, from its means.
+struct Spread {
+  Eigen::Matrix3d accel = Eigen::Matrix3d::Zero(), gyro = Eigen::Matrix3d::Zero();
+  std::array<std::array<double, kBatches>, 6> batch{};  // sums per axis (accel, gyro) and batch
+};
+
+Spread spread_of(const detail::CalibrationSamples& in, const StaticInterval& s) {
+  Spread out;
+  const bool gyro = in.has_gyro();
+  const std::int64_t n = s.last - s.first + 1;
+  const std::int64_t per = n / kBatches;
+  in.for_each(s.first, s.last + 1, [&](const detail::SampleRows& rows) {
+    for (std::int64_t r = 0; r < rows.count; ++r) {
+      const Converted c = converted(rows, r, gyro, false, in.increments(), in.rate_hz());
+      const std::int64_t k = rows.first + r - s.first;
+      Eigen::Vector3d d;
+      for (int a = 0; a < 3; ++a) d[a] = c.v[static_cast<std::size_t>(a)] - s.accel_mean[a];
+      out.accel += d * d.transpose();
+      if (gyro) {
+        for (int a = 0; a < 3; ++a) d[a] = c.v[static_cast<std::size_t>(3 + a)] - s.gyro_mean[a];
+        out.gyro += d * d.transpose();
+      }
+      if (per >= 2 && k < per * kBatches) {
+        auto& b = out.batch;
+        const auto batch = static_cast<std::size_t>(k / per);
+        for (std::size_t a = 0; a < (gyro ? 6u : 3u); ++a) b[a][batch] += c.v[a];
+      }
+    }
+  });
+  out.accel /= static_cast<double>(n - 1);
+  out.gyro /= static_cast<double>(n - 1);
+  return out;
 }
 
 /// Ratio of the observed variance of batch means to the white-noise prediction, per axis, summed
 /// into `sum` with its count (the caller pools them).
-void batch_ratio(const Triad& x, std::int64_t first, std::int64_t last,
-                 const Eigen::Matrix3d& sample_cov, double& sum, int& count, double& worst) {
-  const std::int64_t n = last - first + 1;
+void batch_ratio(const std::array<double, kBatches>& sums, std::int64_t n, double sample_var,
+                 double& sum, int& count, double& worst) {
   const std::int64_t per = n / kBatches;
   if (per < 2) return;
-  for (int a = 0; a < 3; ++a) {
-    if (!(sample_cov(a, a) > 0)) continue;
-    const auto& v = x[static_cast<std::size_t>(a)];
-    std::array<double, kBatches> means{};
-    double grand = 0;
-    for (int b = 0; b < kBatches; ++b) {
-      double s = 0;
-      for (std::int64_t i = 0; i < per; ++i)
-        s += v[static_cast<std::size_t>(first + b * per + i)];
-      means[static_cast<std::size_t>(b)] = s / static_cast<double>(per);
-      grand += means[static_cast<std::size_t>(b)] / kBatches;
-    }
-    double var = 0;
-    for (double m : means) var += (m - grand) * (m - grand);
-    var /= (kBatches - 1);
-    const double ratio = var / (sample_cov(a, a) / static_cast<double>(per));
-    sum += ratio;
-    ++count;
-    worst = std::max(worst, ratio);
+  if (!(sample_var > 0)) return;
+  std::array<double, kBatches> means{};
+  double grand = 0;
+  for (int b = 0; b < kBatches; ++b) {
+    means[static_cast<std::size_t>(b)] = sums[static_cast<std::size_t>(b)] / static_cast<double>(per);
+    grand += means[static_cast<std::size_t>(b)] / kBatches;
   }
-}
-
-void check_triad(const Triad& x, std::size_t n, const char* what) {
-  for (int a = 0; a < 3; ++a) {
-    const auto& v = x[static_cast<std::size_t>(a)];
-    if (v.size() != n)
-      throw Error(std::string("calibrate: the ") + what + " channels must all have " +
-                  std::to_string(n) + " samples");
-    for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(v[i]))
-        throw Error(std::string("calibrate: non-finite ") + what + " value at sample " +
-                    std::to_string(i + 1));
-  }
+  double var = 0;
+  for (double m : means) var += (m - grand) * (m - grand);
+  var /= (kBatches - 1);
+  const double ratio = var / (sample_var / static_cast<double>(per));
+  sum += ratio;
+  ++count;
+  worst = std::max(worst, ratio);
 }
 
 }  // namespace
@@ -131,93 +165,145 @@ void check_triad(const Triad& x, std::size_t n, const char* what) {
 StaticDetection detect_static_intervals(const CalibrationInput& in, const CalibrationOptions& o) {
   if (!(in.rate_hz > 0) || !std::isfinite(in.rate_hz))
     throw Error("calibrate: the sample rate must be > 0 Hz");
-  const std::size_t n = in.accel[0].size();
-  check_triad(in.accel, n, "accelerometer");
-  const bool gyro = !in.gyro[0].empty();
-  if (gyro) check_triad(in.gyro, n, "gyroscope");
-  if (!in.temperature_k.empty() && in.temperature_k.size() != n)
-    throw Error("calibrate: the temperature column must have one value per sample");
-  for (double t : in.temperature_k)
-    if (!(t > 0) || !std::isfinite(t))
-      throw Error("calibrate: temperatures must be finite and > 0 K (check --temp-unit)");
-  if (!(o.window_s > 0) || !(o.min_interval_s > 0))
+  return detail::detect_static(detail::InputSamples(in), o);
+}
+
+namespace detail {
+
+StaticDetection detect_static(const CalibrationSamples& in, const CalibrationOptions& o) {
+  if (!(in.rate_hz() > 0) || !std::isfinite(in.rate_hz()))
+    throw Error("calibrate: the sample rate must be > 0 Hz");
+  const bool gyro = in.has_gyro();
+  const bool temperature = in.has_temperature();
+  const std::int64_t samples = in.rows();
+  const auto validate = [&] {
+    Invalid bad;
+    in.for_each(0, samples, [&](const SampleRows& rows) {
+      for (std::int64_t r = 0; r < rows.count; ++r)
+        bad.check(converted(rows, r, gyro, temperature, in.increments(), in.rate_hz()),
+                  rows.first + r, gyro, temperature);
+    });
+    bad.raise();
+  };
+  if (!(o.window_s > 0) || !(o.min_interval_s > 0)) {
+    validate();
     throw Error("calibrate: window and minimum interval must be > 0 s");
+  }
 
   StaticDetection d;
   std::int64_t w = std::max<std::int64_t>(kMinWindowSamples,
-                                          std::llround(o.window_s * in.rate_hz));
+                                          std::llround(o.window_s * in.rate_hz()));
   if (w % 2 == 0) ++w;  // centred windows
   d.window_samples = w;
-  const auto samples = static_cast<std::int64_t>(n);
-  if (samples < w)
+  if (samples < w) {
+    validate();
     throw Error("calibrate: the log (" + std::to_string(samples) +
                 " samples) is shorter than one detector window (" + std::to_string(w) + ")");
-  // Increments: the statistic works on rates (the value per sample times the rate).
-  const auto rates = [&](const Triad& x) {
-    if (!in.increments) return x;
-    Triad r = x;
-    for (auto& v : r)
-      for (double& e : v) e *= in.rate_hz;
-    return r;
-  };
-  const Triad accel = rates(in.accel);
-  const Triad gyr = gyro ? rates(in.gyro) : Triad{};
-  const auto sa = window_statistic(accel, w);
-  d.accel_floor = quantile_of(sa, kFloorQuantile);
+  }
+  // Pass 1 checks the values and starts the selection of the floors; further passes (only for
+  // logs of more than ~2 million samples) narrow it down.
+  const std::int64_t windows = samples - (w - 1);
+  StreamQuantile qa(kFloorQuantile, windows), qg(kFloorQuantile, gyro ? windows : 0);
+  Invalid bad;
+  stream_statistics(
+      in, w, [&](std::int64_t i, const Converted& c) { bad.check(c, i, gyro, temperature); },
+      [&](std::int64_t, double sa, double sg) {
+        qa.add(sa);
+        if (gyro) qg.add(sg);
+      });
+  bad.raise();
+  bool done = qa.end_pass();
+  if (gyro) done = qg.end_pass() && done;
+  while (!done) {
+    stream_statistics(
+        in, w, [](std::int64_t, const Converted&) {},
+        [&](std::int64_t, double sa, double sg) {
+          if (!qa.done()) qa.add(sa);
+          if (gyro && !qg.done()) qg.add(sg);
+        });
+    done = qa.done() || qa.end_pass();
+    if (gyro && !qg.done()) done = qg.end_pass() && done;
+  }
+  d.accel_floor = qa.value();
   d.accel_threshold = kStaticThresholdFactor * d.accel_floor;
-  std::vector<double> sg;
   if (gyro) {
-    sg = window_statistic(gyr, w);
-    d.gyro_floor = quantile_of(sg, kFloorQuantile);
+    d.gyro_floor = qg.value();
     d.gyro_threshold = kStaticThresholdFactor * d.gyro_floor;
   }
-  const auto is_static = [&](std::int64_t i) {
-    const auto k = static_cast<std::size_t>(i);
-    if (!(sa[k] <= d.accel_threshold)) return false;  // NaN (window outside the log) fails
-    return !gyro || sg[k] <= d.gyro_threshold;
+
+  // Pass 2: the runs of static samples and the sums of their means. A sample's statistic is
+  // known h samples after it, so the samples wait in a ring of h + 1.
+  const std::int64_t h = (w - 1) / 2;
+  const auto min_len = static_cast<std::int64_t>(std::ceil(o.min_interval_s * in.rate_hz()));
+  const std::int64_t keep = std::max<std::int64_t>(min_len, 3);
+  std::vector<Converted> ring(static_cast<std::size_t>(h + 1));
+  std::vector<StaticInterval> candidates;
+  Run run;
+  bool in_run = false;
+  const auto close = [&] {
+    in_run = false;
+    if (run.last - run.first + 1 < keep) return;
+    StaticInterval s;
+    s.first = run.first;
+    s.last = run.last;
+    s.start_s = static_cast<double>(run.first) / in.rate_hz();
+    s.end_s = static_cast<double>(run.last) / in.rate_hz();
+    const double count = static_cast<double>(run.last - run.first + 1);
+    s.accel_mean = run.accel_sum / count;
+    if (gyro) s.gyro_mean = run.gyro_sum / count;
+    if (temperature) s.temperature_k = run.temperature_sum / count;
+    candidates.push_back(s);
   };
-  const auto min_len = static_cast<std::int64_t>(std::ceil(o.min_interval_s * in.rate_hz));
+  stream_statistics(
+      in, w,
+      [&](std::int64_t i, const Converted& c) { ring[static_cast<std::size_t>(i % (h + 1))] = c; },
+      [&](std::int64_t i, double sa, double sg) {
+        const bool is_static = sa <= d.accel_threshold && (!gyro || sg <= d.gyro_threshold);
+        if (!is_static) {
+          if (in_run) close();
+          return;
+        }
+        if (!in_run) {
+          run = Run{};
+          run.first = i;
+          in_run = true;
+        }
+        run.last = i;
+        const Converted& c = ring[static_cast<std::size_t>(i % (h + 1))];
+        for (int a = 0; a < 3; ++a) {
+          run.accel_sum[a] += c.v[static_cast<std::size_t>(a)];
+          if (gyro) run.gyro_sum[a] += c.v[static_cast<std::size_t>(3 + a)];
+        }
+        if (temperature) run.temperature_sum += c.v[6];
+      });
+  if (in_run) close();
+
+  // Pass 3, over the candidates only: covariances and the batch-means check.
   double ratio_sum = 0;
   int ratio_count = 0;
-  for (std::int64_t i = 0; i < samples;) {
-    if (!is_static(i)) {
-      ++i;
-      continue;
+  for (StaticInterval& s : candidates) {
+    const Spread sp = spread_of(in, s);
+    const std::int64_t n = s.last - s.first + 1;
+    const double count = static_cast<double>(n);
+    double my_sum = 0, worst = 0;
+    int my_count = 0;
+    s.accel_cov = sp.accel / count;
+    for (int a = 0; a < 3; ++a)
+      batch_ratio(sp.batch[static_cast<std::size_t>(a)], n, sp.accel(a, a), my_sum, my_count, worst);
+    if (gyro) {
+      s.gyro_sample_cov = sp.gyro;
+      s.gyro_cov = s.gyro_sample_cov / count;
+      for (int a = 0; a < 3; ++a)
+        batch_ratio(sp.batch[static_cast<std::size_t>(3 + a)], n, sp.gyro(a, a), my_sum, my_count,
+                    worst);
     }
-    std::int64_t j = i;
-    while (j + 1 < samples && is_static(j + 1)) ++j;
-    if (j - i + 1 >= std::max<std::int64_t>(min_len, 3)) {
-      StaticInterval s;
-      double my_sum = 0, worst = 0;
-      int my_count = 0;
-      s.first = i;
-      s.last = j;
-      s.start_s = static_cast<double>(i) / in.rate_hz;
-      s.end_s = static_cast<double>(j) / in.rate_hz;
-      const double count = static_cast<double>(j - i + 1);
-      Eigen::Matrix3d cov;
-      mean_and_cov(accel, i, j, s.accel_mean, cov);
-      s.accel_cov = cov / count;
-      batch_ratio(accel, i, j, cov, my_sum, my_count, worst);
-      if (gyro) {
-        mean_and_cov(gyr, i, j, s.gyro_mean, s.gyro_sample_cov);
-        s.gyro_cov = s.gyro_sample_cov / count;
-        batch_ratio(gyr, i, j, s.gyro_sample_cov, my_sum, my_count, worst);
-      }
-      if (!in.temperature_k.empty()) {
-        double t = 0;
-        for (std::int64_t k = i; k <= j; ++k) t += in.temperature_k[static_cast<std::size_t>(k)];
-        s.temperature_k = t / count;
-      }
-      if (worst > kMaxBatchRatio) {
-        ++d.rejected_moving;
-      } else {
-        ratio_sum += my_sum;
-        ratio_count += my_count;
-        d.intervals.push_back(s);
-      }
+    if (worst > kMaxBatchRatio) {
+      ++d.rejected_moving;
+    } else {
+      ratio_sum += my_sum;
+      ratio_count += my_count;
+      d.intervals.push_back(s);
     }
-    i = j + 1;
   }
   // Pooled batch-means check: for white noise each ratio has mean 1 and variance 2/(B-1); the
   // pooled mean is applied only when it exceeds 1 by more than 3 of its standard errors, i.e.
@@ -237,4 +323,5 @@ StaticDetection detect_static_intervals(const CalibrationInput& in, const Calibr
   return d;
 }
 
+}  // namespace detail
 }  // namespace sigmatau

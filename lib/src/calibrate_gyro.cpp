@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 
 #include "calibrate_internal.hpp"
@@ -43,7 +44,6 @@ struct Rotation {
   Eigen::Vector3d earth = Eigen::Vector3d::Zero();  // reading_k - bias_k (before G^-1) [rad/s]
   double step_s = 0;                  // duration of each step [s]
   std::vector<Eigen::Vector3d> dz;    // per step, before G^-1 [rad]
-  std::vector<double> weight_k;       // per step: share of interval k's reading (times tau0)
   double white_var = 0;               // per-axis variance of the integrated white noise [rad^2]
   Eigen::Matrix3d basis;              // 3x2 used: columns 0, 1 normal to u_{k+1}
 };
@@ -67,10 +67,11 @@ void directions(const std::vector<StaticInterval>& iv, const AccelFit& accel, co
 
 }  // namespace
 
-GyroMatrixFit fit_gyroscope_matrix(const CalibrationInput& in, const std::vector<StaticInterval>& iv,
+GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vector<StaticInterval>& iv,
                                    const AccelFit& accel, double t0,
                                    const std::vector<Eigen::Vector3d>& interval_bias) {
-  const double tau0 = 1 / in.rate_hz;
+  const double tau0 = 1 / in.rate_hz();
+  const bool increments = in.increments();
   std::vector<Eigen::Vector3d> u0;
   directions(iv, accel, accel.params, t0, u0, nullptr);
   std::vector<Rotation> rots;
@@ -78,6 +79,9 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationInput& in, const std::vector
     const StaticInterval& a = iv[k];
     const StaticInterval& b = iv[k + 1];
     const double angle = std::acos(std::clamp(u0[k].dot(u0[k + 1]), -1.0, 1.0));
+    // Steps: rate samples e..s by the trapezoid, or the increments of samples e+1..s-1.
+    const std::int64_t steps = increments ? b.first - a.last - 1 : b.first - a.last;
+    if (angle < kMinRotation && steps < 2) continue;
     Rotation r;
     r.from = static_cast<int>(k);
     r.step_s = tau0;
@@ -87,33 +91,34 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationInput& in, const std::vector
     // Static reading interpolated linearly in time between the two interval centres.
     const double ta = (a.start_s + a.end_s) / 2, tb = (b.start_s + b.end_s) / 2;
     const auto lam = [&](double t) { return (t - ta) / (tb - ta); };
-    const auto sample = [&](std::int64_t i) {
-      return Eigen::Vector3d(in.gyro[0][static_cast<std::size_t>(i)], in.gyro[1][static_cast<std::size_t>(i)],
-                             in.gyro[2][static_cast<std::size_t>(i)]);
-    };
     const double sigma2 = (a.gyro_sample_cov.trace() + b.gyro_sample_cov.trace()) / 6;
-    if (!in.increments) {
-      // Trapezoid on rate samples e..s.
-      for (std::int64_t i = a.last; i < b.first; ++i) {
-        const double t1 = static_cast<double>(i) * tau0, t2 = t1 + tau0;
-        const double l1 = lam(t1), l2 = lam(t2);
-        const Eigen::Vector3d z1 = sample(i) - ((1 - l1) * ba + l1 * bb);
-        const Eigen::Vector3d z2 = sample(i + 1) - ((1 - l2) * ba + l2 * bb);
-        r.dz.push_back((z1 + z2) / 2 * tau0);
-        r.weight_k.push_back(tau0);
+    r.dz.reserve(static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)));
+    // Only the samples of this rotation are read (and kept, as dz: 24 bytes per step).
+    Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+    in.for_each(a.last, b.first + 1, [&](const SampleRows& rows) {
+      for (std::int64_t j = 0; j < rows.count; ++j) {
+        const std::int64_t i = rows.first + j;
+        const Eigen::Vector3d sample(rows.value(kGyroChannel, j), rows.value(kGyroChannel + 1, j),
+                                     rows.value(kGyroChannel + 2, j));
+        if (!increments) {
+          // Trapezoid on rate samples e..s (step i - 1 -> i).
+          if (i > a.last) {
+            const double t1 = static_cast<double>(i - 1) * tau0, t2 = t1 + tau0;
+            const double l1 = lam(t1), l2 = lam(t2);
+            const Eigen::Vector3d z1 = previous - ((1 - l1) * ba + l1 * bb);
+            const Eigen::Vector3d z2 = sample - ((1 - l2) * ba + l2 * bb);
+            r.dz.push_back((z1 + z2) / 2 * tau0);
+          }
+          previous = sample;
+        } else if (i > a.last && i < b.first) {
+          // Sample i integrates over the interval before t_i + tau0.
+          const double l = lam((static_cast<double>(i) + 0.5) * tau0);
+          r.dz.push_back(sample - ((1 - l) * ba + l * bb) * tau0);
+        }
       }
-      const double steps = static_cast<double>(b.first - a.last);
-      r.white_var = sigma2 * tau0 * tau0 * (steps - 0.5);
-    } else {
-      // Increments of samples e+1..s-1 (sample i integrates over the interval before t_i + tau0).
-      for (std::int64_t i = a.last + 1; i < b.first; ++i) {
-        const double l = lam((static_cast<double>(i) + 0.5) * tau0);
-        r.dz.push_back(sample(i) - ((1 - l) * ba + l * bb) * tau0);
-        r.weight_k.push_back(tau0);
-      }
-      r.white_var = sigma2 * tau0 * tau0 * static_cast<double>(r.dz.size());
-    }
-    if (angle < kMinRotation && r.dz.size() < 2) continue;
+    });
+    r.white_var = increments ? sigma2 * tau0 * tau0 * static_cast<double>(r.dz.size())
+                             : sigma2 * tau0 * tau0 * (static_cast<double>(steps) - 0.5);
     // Basis of the plane normal to u_{k+1}.
     const Eigen::Vector3d n = u0[k + 1];
     const Eigen::Vector3d e1 = n.unitOrthogonal();
@@ -139,7 +144,7 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationInput& in, const std::vector
       // start: the error is Omega times the step angle, < 1e-6 rad/s).
       rot = rot * exp_so3(ginv * r.dz[i] - rot.transpose() * earth * r.step_s);
       if (mk) {
-        sk += rot * r.weight_k[i];
+        sk += rot * r.step_s;  // each step's share of interval k's reading (times tau0)
       }
     }
     if (mk) {

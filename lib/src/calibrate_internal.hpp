@@ -3,13 +3,137 @@
 // accelerometer and gyroscope fits and the temperature regression.
 #include <Eigen/Core>
 
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "sigmatau/calibrate.hpp"
+#include "sigmatau/calibrate_log.hpp"
 
 namespace sigmatau::detail {
+
+/// Channel order of a calibration row: ax, ay, az, gx, gy, gz, temperature.
+inline constexpr int kAccelChannel = 0, kGyroChannel = 3, kTemperatureChannel = 6;
+
+/// Consecutive rows of a calibration log: value(c, r) is channel c of row first + r, as stored
+/// (rates or increments in SI, temperature in K).
+struct SampleRows {
+  std::int64_t first = 0;
+  std::int64_t count = 0;
+  std::array<const double*, 7> column{};  ///< nullptr for a channel the log does not have
+  std::ptrdiff_t stride = 1;              ///< between rows [values]
+  double value(int channel, std::int64_t r) const {
+    return column[static_cast<std::size_t>(channel)][r * stride];
+  }
+};
+
+/// The samples the calibration reads, as often as it needs, in row order: the vectors of a
+/// CalibrationInput or a CalibrationLog (in memory or in its temporary file).
+class CalibrationSamples {
+ public:
+  virtual ~CalibrationSamples() = default;
+  virtual std::int64_t rows() const = 0;
+  virtual bool has_gyro() const = 0;
+  virtual bool has_temperature() const = 0;
+  virtual double rate_hz() const = 0;
+  virtual bool increments() const = 0;
+  /// Calls each() on consecutive pieces that together cover rows [begin, end).
+  virtual void for_each(std::int64_t begin, std::int64_t end,
+                        const std::function<void(const SampleRows&)>& each) const = 0;
+};
+
+/// CalibrationInput's vectors as CalibrationSamples (no copy). Throws Error when the channels
+/// have unequal lengths (the same messages as before).
+class InputSamples final : public CalibrationSamples {
+ public:
+  explicit InputSamples(const CalibrationInput& input);
+  std::int64_t rows() const override;
+  bool has_gyro() const override { return !in_.gyro[0].empty(); }
+  bool has_temperature() const override { return !in_.temperature_k.empty(); }
+  double rate_hz() const override { return in_.rate_hz; }
+  bool increments() const override { return in_.increments; }
+  void for_each(std::int64_t begin, std::int64_t end,
+                const std::function<void(const SampleRows&)>& each) const override;
+
+ private:
+  const CalibrationInput& in_;
+};
+
+/// A CalibrationLog with its rate as CalibrationSamples.
+class LogSamples final : public CalibrationSamples {
+ public:
+  LogSamples(const CalibrationLog& log, double rate_hz, bool increments)
+      : log_(log), rate_hz_(rate_hz), increments_(increments) {}
+  std::int64_t rows() const override { return log_.rows(); }
+  bool has_gyro() const override { return log_.has_gyro(); }
+  bool has_temperature() const override { return log_.has_temperature(); }
+  double rate_hz() const override { return rate_hz_; }
+  bool increments() const override { return increments_; }
+  void for_each(std::int64_t begin, std::int64_t end,
+                const std::function<void(const SampleRows&)>& each) const override;
+
+ private:
+  const CalibrationLog& log_;
+  double rate_hz_;
+  bool increments_;
+};
+
+/// detect_static_intervals over any samples (calibrate_detect.cpp).
+StaticDetection detect_static(const CalibrationSamples& samples, const CalibrationOptions& options);
+
+/// calibrate over any samples (calibrate.cpp).
+CalibrationResult calibrate_samples(const CalibrationSamples& samples,
+                                    const CalibrationOptions& options);
+
+/// The detector's window statistic as the rows stream past (calibrate_window.cpp): for sample i,
+/// the sum over three axes of the variance of samples i-h..i+h (w = 2h+1 odd), from running sums
+/// centred on each axis's first value, in the same order of operations as over the whole log.
+class WindowStatistic {
+ public:
+  explicit WindowStatistic(std::int64_t w);
+  /// Feeds the next sample (three axes). Returns true when the statistic of sample
+  /// pushed() - 1 - h is complete (then value() holds it).
+  bool push(const double* v, std::ptrdiff_t stride);
+  double value() const { return value_; }
+
+ private:
+  std::int64_t w_, pushed_ = 0;
+  std::array<double, 3> centre_{}, s1_{}, s2_{};
+  std::vector<std::array<double, 6>> ring_;  // prefix sums s1, s2 of the last w+1 prefixes
+  double value_ = 0;
+};
+
+/// The exact k-th smallest of a stream of non-negative doubles, k = floor(q (n-1)) of the n
+/// non-NaN values, in bounded memory: each pass either collects the values that share the
+/// candidates' leading bits (when few enough) or histograms their next bits (calibrate_window.cpp).
+/// The bit patterns of non-negative doubles sort like their values, so the result is the value
+/// std::nth_element would give.
+class StreamQuantile {
+ public:
+  /// q in [0, 1]; `expected` values per pass (n if known, to collect at once when small).
+  StreamQuantile(double q, std::int64_t expected);
+  void add(double v);
+  /// Ends a pass; returns true when the quantile is known (value(); NaN without values).
+  bool end_pass();
+  bool done() const { return done_; }
+  double value() const { return value_; }
+
+ private:
+  double q_;
+  std::int64_t count_ = 0;      // non-NaN values of the first pass
+  bool first_pass_ = true;
+  std::int64_t k_ = 0;          // rank within the current prefix group
+  std::int64_t group_ = 0;      // values in the current prefix group (or expected)
+  std::uint64_t prefix_ = 0;
+  int prefix_bits_ = 0, bits_ = 0;  // leading bits fixed; bits histogrammed this pass
+  bool collecting_ = false, done_ = false;
+  std::vector<std::int64_t> histogram_;
+  std::vector<double> collected_;
+  double value_ = 0;
+  void start_pass();
+};
 
 /// Whitened residuals r(p) (each of unit variance under the noise model).
 using Residuals = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
@@ -81,7 +205,7 @@ struct GyroMatrixFit {
 };
 /// `interval_bias` is the gyroscope bias at each interval (a first bias model): the rest of each
 /// static reading is the Earth rate, which turns with the body during a rotation.
-GyroMatrixFit fit_gyroscope_matrix(const CalibrationInput& input,
+GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& samples,
                                    const std::vector<StaticInterval>& intervals,
                                    const AccelFit& accel, double reference_temperature_k,
                                    const std::vector<Eigen::Vector3d>& interval_bias);
