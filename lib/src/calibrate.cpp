@@ -194,8 +194,11 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
   res.orientations = static_cast<int>(centres.size());
   if (res.orientations < o.min_orientations) {
     const std::string missing = missing_directions(centres);
-    throw Error("calibrate: " + std::to_string(iv.size()) + " static intervals but only " +
-                std::to_string(res.orientations) + " distinct orientations (need >= " +
+    throw Error("calibrate: " + std::to_string(iv.size()) +
+                (iv.size() == 1 ? " static interval" : " static intervals") + " but only " +
+                std::to_string(res.orientations) +
+                (res.orientations == 1 ? " distinct orientation" : " distinct orientations") +
+                " (need >= " +
                 std::to_string(o.min_orientations) + ")" +
                 (missing.empty() ? std::string("; add positions between those measured")
                                  : "; gravity was never near " + missing));
