@@ -21,74 +21,32 @@
 // to Cov(s2_a, s2_b) (F_m(i): the sum over the second differences at m of their squared
 // coefficient on e_i, kurtosis_overlap). It lowers the variance of the quantization-dominated
 // estimates to ~0.7 of the Gaussian value, as measured on the simulator's quantizer.
-// S Phi is a trigonometric polynomial for Q, N and K (c has compact support |L| < m_a + m_b + 1),
-// so its P-point inverse DFT is exact once P > 2 (m_a + m_b + 1); flicker and Gauss-Markov
-// decay and are aliased by less than their tail beyond P/2.
-#include <fftw3.h>
-
+// Lag sums (fit_covariance_lagsum.cpp, fit_covariance_kernels.cpp): c_ab(L) comes from the
+// generalized covariance of the integrated rate in O(1) per lag (compact support |u| <= m_a +
+// m_b and piecewise polynomial for Q, N, K; closed forms for B and GM), and the sum over every
+// lag takes O(log N) evaluations with a discrete Gauss rule between c's breakpoints: exact up to
+// rounding for Q, N, K and the ramp, ~1e-13 for B and GM, O(1) memory per pair. The previous
+// FFT of length 8 (m_a + m_b) (kept as a reference, fit_covariance_fft.cpp) needed ~48 P bytes
+// (3.2 GiB at m = 2^22) and truncated the flicker tail beyond 4 (m_a + m_b), which moved B's
+// sums by up to ~1e-2 (bench/results_fit_covariance.md).
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <map>
 #include <mutex>
-#include <numbers>
 #include <tuple>
 
-#include "fftw_planner.hpp"
+#include "fit_covariance_lags.hpp"
 #include "fit_internal.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-/// FFT length per pair: kLagFactor (m_a + m_b) rounded up to a power of two. The compact terms
-/// need > 2 (m_a + m_b + 1); 8 leaves the flicker tail (c ~ m_a m_b / L^2, so c^2 ~ L^-4) beyond
-/// 4 (m_a + m_b) out of the window and aliased, an estimated ~1 % of sum c^2 (not measured
-/// separately; the Monte Carlo test in tests/test_fit.cpp checks variances to 25 %).
-constexpr std::int64_t kLagFactor = 8;
-constexpr std::int64_t kMinFft = 256;
 /// Excess kurtosis of a uniform rounding error (IEEE quantization, Q = step / sqrt(12)):
 /// E e^4 / (E e^2)^2 - 3 = 9/5 - 3.
 constexpr double kUniformExcessKurtosis = -1.2;
 /// Most layouts a process keeps (a bench uses a handful).
 constexpr std::size_t kCacheSize = 16;
-
-/// sin(pi r / P) for r in [0, 2P): sin(pi p m / P) is table[(p m) mod 2P], the argument reduced
-/// exactly in integers.
-std::vector<double> sine_table(std::int64_t big_p) {
-  std::vector<double> t(static_cast<std::size_t>(2 * big_p));
-  for (std::int64_t r = 0; r < 2 * big_p; ++r) {
-    t[static_cast<std::size_t>(r)] = std::sin(kPi * static_cast<double>(r) / static_cast<double>(big_p));
-  }
-  return t;
-}
-
-/// S Phi is real and even, so its inverse DFT of length P is a DCT-I of length P/2 + 1
-/// (FFTW REDFT00: Y_L = x_0 + (-1)^L x_{P/2} + 2 sum_{0<p<P/2} x_p cos(2 pi p L / P)).
-struct FftBuffers {
-  std::int64_t size = 0;
-  double* in = nullptr;
-  double* out = nullptr;
-  fftw_plan plan = nullptr;
-
-  explicit FftBuffers(std::int64_t p) : size(p) {
-    in = fftw_alloc_real(static_cast<std::size_t>(p / 2 + 1));
-    out = fftw_alloc_real(static_cast<std::size_t>(p / 2 + 1));
-    std::lock_guard lock(fftw_planner_mutex());
-    plan = fftw_plan_r2r_1d(static_cast<int>(p / 2 + 1), in, out, FFTW_REDFT00, FFTW_ESTIMATE);
-  }
-  ~FftBuffers() {
-    {
-      std::lock_guard lock(fftw_planner_mutex());
-      fftw_destroy_plan(plan);
-    }
-    fftw_free(in);
-    fftw_free(out);
-  }
-  FftBuffers(const FftBuffers&) = delete;
-  FftBuffers& operator=(const FftBuffers&) = delete;
-};
 
 /// sum_i F_a(i) F_b(i) with F_m(i) = sum_k g_k(i)^2 over the n = N - 2m second differences
 /// of the phase error e at factor m (g_k = 1, -2, 1 at i = k, k + m, k + 2m):
@@ -150,7 +108,6 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
   basis.terms = kTermCount + (gm ? 1 : 0);
   const std::size_t taus = basis.m.size();
   basis.h.assign(taus * (taus + 1) / 2, Eigen::MatrixXd::Zero(basis.terms, basis.terms));
-  const double phi = gm ? std::exp(-tau0_s / *gm_tau_c_s) : 0.0;
 
   // Stochastic terms (ramp excluded): indices into theta.
   std::vector<int> stochastic{0, 1, 2, 3};
@@ -158,92 +115,25 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
   constexpr int kRamp = 4;
   const std::size_t ns = stochastic.size();
 
-  // Pairs grouped by FFT length, so each length is planned once.
-  std::map<std::int64_t, std::vector<std::pair<std::size_t, std::size_t>>> by_size;
+  const std::optional<double> gm_rate =
+      gm ? std::optional<double>(tau0_s / *gm_tau_c_s) : std::nullopt;
   for (std::size_t b = 0; b < taus; ++b) {
     for (std::size_t a = 0; a <= b; ++a) {
-      std::int64_t p = kMinFft;
-      while (p < kLagFactor * (basis.m[a] + basis.m[b])) p *= 2;
-      by_size[p].emplace_back(a, b);
-    }
-  }
-  std::vector<std::vector<double>> c(ns);
-  for (const auto& [big_p, pairs] : by_size) {
-    FftBuffers fft(big_p);
-    const std::int64_t half = big_p / 2;
-    for (auto& v : c) v.assign(static_cast<std::size_t>(half + 1), 0.0);
-    const std::vector<double> table = sine_table(big_p);
-    // Captured by value: a lambda may not capture a structured binding before C++20's P1091
-    // (clang 14 refuses it; the fuzz build uses clang).
-    const auto sin_of = [&table, period = big_p](std::int64_t p, std::int64_t mult) {
-      return table[static_cast<std::size_t>((p * mult) % (2 * period))];
-    };
-    std::vector<double> sines(static_cast<std::size_t>(half + 1)), nums(static_cast<std::size_t>(half + 1));
-    for (const auto& [a, b] : pairs) {
       const std::int64_t ma = basis.m[a], mb = basis.m[b];
-      const double mm = static_cast<double>(ma) * static_cast<double>(mb);
-      // Per-frequency factors shared by the terms: num = sin^2(pi f m_a) sin^2(pi f m_b) / (m_a m_b).
-      for (std::int64_t p = 1; p <= half; ++p) {
-        const double s = sin_of(p, 1);
-        const double sa = sin_of(p, ma);
-        const double sb = sin_of(p, mb);
-        sines[static_cast<std::size_t>(p)] = s;
-        nums[static_cast<std::size_t>(p)] = sa * sa * sb * sb / mm;
-      }
-      for (std::size_t t = 0; t < ns; ++t) {
-        // Only K's S Phi is non-zero at f = 0 (its limit is tau0 m_a m_b).
-        fft.in[0] = stochastic[t] == 3 ? tau0_s * mm : 0.0;
-        for (std::int64_t p = 1; p <= half; ++p) {
-          const double s = sines[static_cast<std::size_t>(p)];
-          const double num = nums[static_cast<std::size_t>(p)];
-          const double s2 = s * s;
-          double x = 0;
-          switch (stochastic[t]) {
-            case 0: x = 16 * num / (tau0_s * tau0_s); break;
-            case 1: x = 4 * num / s2 / tau0_s; break;
-            case 2: x = 2 * num / (s2 * std::abs(s)); break;
-            case 3: x = tau0_s * num / (s2 * s2); break;
-            default: {
-              const double w = 2 * kPi * static_cast<double>(p) / static_cast<double>(big_p);
-              x = (1 - phi * phi) / (1 - 2 * phi * std::cos(w) + phi * phi) * 4 * num / s2;
-            }
-          }
-          fft.in[p] = x;
-        }
-        fftw_execute(fft.plan);
-        const double scale = 1.0 / static_cast<double>(big_p);
-        for (std::int64_t i = 0; i <= half; ++i) c[t][static_cast<std::size_t>(i)] = fft.out[i] * scale;
-      }
-      // Sum over lags L with u = L - (m_a - m_b) inside the alias-free window (-P/2, P/2).
-      const std::int64_t na = n_phase_points - 2 * ma, nb = n_phase_points - 2 * mb;
-      const std::int64_t shift = ma - mb;
-      const std::int64_t l_lo = std::max(-(na - 1), shift - half + 1);
-      const std::int64_t l_hi = std::min(nb - 1, shift + half - 1);
-      Eigen::MatrixXd cc = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(ns), static_cast<Eigen::Index>(ns));
-      Eigen::VectorXd c1 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ns));
-      std::vector<double> cl(ns);
-      for (std::int64_t lag = l_lo; lag <= l_hi; ++lag) {
-        const std::int64_t w = std::min(na, nb - lag) - std::max<std::int64_t>(0, -lag);
-        if (w <= 0) continue;
-        const std::int64_t u = std::abs(lag - shift);  // c is even in u
-        for (std::size_t t = 0; t < ns; ++t) cl[t] = c[t][static_cast<std::size_t>(u)];
-        const double wd = static_cast<double>(w);
-        for (std::size_t t = 0; t < ns; ++t) {
-          c1(static_cast<Eigen::Index>(t)) += wd * cl[t];
-          for (std::size_t r = 0; r <= t; ++r) cc(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(r)) += wd * cl[t] * cl[r];
-        }
-      }
-      const double nn = static_cast<double>(na) * static_cast<double>(nb);
+      const LagSums sums = covariance_lag_sums(PairCorrelation(ma, mb, tau0_s, gm_rate), n_phase_points);
+      const double nn = static_cast<double>(n_phase_points - 2 * ma) *
+                        static_cast<double>(n_phase_points - 2 * mb);
       Eigen::MatrixXd& h = basis.h[basis.pair_index(a, b)];
       for (std::size_t t = 0; t < ns; ++t) {
+        const auto ti = static_cast<Eigen::Index>(t);
         for (std::size_t r = 0; r <= t; ++r) {
-          const double v = cc(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(r)) / (2 * nn);
+          const double v = sums.cc(ti, static_cast<Eigen::Index>(r)) / (2 * nn);
           h(stochastic[t], stochastic[r]) = v;
           h(stochastic[r], stochastic[t]) = v;
         }
         // Ramp cross term: (1/(n_a n_b)) tau_a tau_b sum w c, split over (R, t) and (t, R).
         const double ramp = static_cast<double>(ma) * tau0_s * static_cast<double>(mb) * tau0_s *
-                            c1(static_cast<Eigen::Index>(t)) / nn / 2;
+                            sums.c1(ti) / nn / 2;
         h(kRamp, stochastic[t]) = ramp;
         h(stochastic[t], kRamp) = ramp;
       }
