@@ -179,6 +179,7 @@ void run_calibrate(const CalibrateArguments& a) {
   }
   if (a.gravity) o.gravity = *a.gravity;
   o.min_orientations = a.min_orientations;
+  o.rotation_memory_bytes = memory / 4;
   o.confidence = a.confidence;
   {
     // "25 degC" is an absolute temperature: parse_quantity returns it in K with the offset.
@@ -230,8 +231,8 @@ void add_calibrate_command(CLI::App& app) {
   command->add_flag("--force", args->force, "overwrite an existing output file");
   command->add_option("--memory", args->memory,
                       "memory for the samples, e.g. 1GiB: beyond it they are kept in a temporary "
-                      "file (TMPDIR) and read back (same results); the calibration itself needs "
-                      "a few tens of MiB more")
+                      "file (TMPDIR) and read back (same results); the gyroscope's rotations get "
+                      "a quarter of it more, the detector about 40 MiB")
       ->capture_default_str();
   command->callback([args] { run_calibrate(*args); });
 }

@@ -124,9 +124,11 @@ TEST_CASE("a calibration log in memory or in its temporary file calibrates like 
       CalibrationOptions o;
       o.latitude_rad = 45 * kDeg;
       o.gravity = normal_gravity(*o.latitude_rad);
-      const std::string expected = calibration_json(calibrate(in, o));
-      // 1 GiB keeps the 1.5 MB log in memory; 1 byte sends every row to the file.
+      const std::string expected = calibration_json(calibrate(in, o));  // steps in memory
+      // 1 GiB keeps the 1.5 MB log in memory; 1 byte sends every row, and every rotation step
+      // of the gyroscope fit, to a temporary file.
       for (const std::int64_t memory : {std::int64_t{1} << 30, std::int64_t{1}}) {
+        o.rotation_memory_bytes = memory;
         CalibrationLog log(true, temperature, memory);
         fill(log, in);
         CHECK(log.rows() == static_cast<std::int64_t>(in.accel[0].size()));
@@ -176,6 +178,7 @@ TEST_CASE("the noise floor is the exact 25th percentile above 2^21 windows") {
   // The same log spilled to a file: the same whole calibration.
   o.latitude_rad = 45 * kDeg;
   o.gravity = normal_gravity(*o.latitude_rad);
+  o.rotation_memory_bytes = 1;
   CalibrationLog log(true, false, 1);
   fill(log, in);
   CHECK(calibration_json(calibrate(log, in.rate_hz, false, o)) == calibration_json(calibrate(in, o)));

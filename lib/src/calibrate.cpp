@@ -338,7 +338,8 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
     const BiasModel first = bias_model(g);
     std::vector<Eigen::Vector3d> interval_bias;
     for (double dt : x) interval_bias.push_back(first.at(dt));
-    const detail::GyroMatrixFit f = detail::fit_gyroscope_matrix(in, iv, accel, t0, interval_bias);
+    const detail::GyroMatrixFit f = detail::fit_gyroscope_matrix(in, iv, accel, t0, interval_bias,
+                                                                 o.rotation_memory_bytes);
     g = f.matrix;
     gcov = f.covariance;
     gyro.matrix_estimated = true;

@@ -76,9 +76,9 @@ struct Invalid {
   }
 };
 
-/// Streams every sample once: calls sample(i, c) on each sample converted, and statistic(i, sa,
-/// sg) for i in [h, n-h) (sg 0 without gyroscope), in ascending i, statistic before sample for
-/// the same i never assumed (they are independent).
+/// Streams every sample once: calls sample(i, c) on each sample i as converted, and statistic(i,
+/// sa, sg) for each i in [h, n-h) in ascending order (sg = 0 without gyroscope) as soon as its
+/// window is complete, i.e. right after sample(i + h, ...).
 template <class OnSample, class OnStatistic>
 void stream_statistics(const detail::CalibrationSamples& in, std::int64_t w, OnSample&& sample,
                        OnStatistic&& statistic) {

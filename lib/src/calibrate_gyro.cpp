@@ -43,7 +43,7 @@ struct Rotation {
   int from = 0;                       // interval k
   Eigen::Vector3d earth = Eigen::Vector3d::Zero();  // reading_k - bias_k (before G^-1) [rad/s]
   double step_s = 0;                  // duration of each step [s]
-  std::vector<Eigen::Vector3d> dz;    // per step, before G^-1 [rad]
+  std::int64_t begin = 0, end = 0;    // its steps dz (before G^-1 [rad]): rows of the step store
   double white_var = 0;               // per-axis variance of the integrated white noise [rad^2]
   Eigen::Matrix3d basis;              // 3x2 used: columns 0, 1 normal to u_{k+1}
 };
@@ -69,12 +69,25 @@ void directions(const std::vector<StaticInterval>& iv, const AccelFit& accel, co
 
 GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vector<StaticInterval>& iv,
                                    const AccelFit& accel, double t0,
-                                   const std::vector<Eigen::Vector3d>& interval_bias) {
+                                   const std::vector<Eigen::Vector3d>& interval_bias,
+                                   std::int64_t step_memory_bytes) {
   const double tau0 = 1 / in.rate_hz();
   const bool increments = in.increments();
   std::vector<Eigen::Vector3d> u0;
   directions(iv, accel, accel.params, t0, u0, nullptr);
   std::vector<Rotation> rots;
+  // The steps of every rotation, three values each: in memory up to step_memory_bytes, beyond
+  // in a temporary file that each evaluation of the residuals reads through.
+  CalibrationLog store(false, false, step_memory_bytes);
+  std::vector<double> pending;
+  const auto flush_steps = [&] {
+    store.append(pending);
+    pending.clear();
+  };
+  const auto add_step = [&](const Eigen::Vector3d& dz) {
+    pending.insert(pending.end(), {dz.x(), dz.y(), dz.z()});
+    if (pending.size() >= 3 * 4096) flush_steps();
+  };
   for (std::size_t k = 0; k + 1 < iv.size(); ++k) {
     const StaticInterval& a = iv[k];
     const StaticInterval& b = iv[k + 1];
@@ -92,8 +105,8 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vect
     const double ta = (a.start_s + a.end_s) / 2, tb = (b.start_s + b.end_s) / 2;
     const auto lam = [&](double t) { return (t - ta) / (tb - ta); };
     const double sigma2 = (a.gyro_sample_cov.trace() + b.gyro_sample_cov.trace()) / 6;
-    r.dz.reserve(static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)));
-    // Only the samples of this rotation are read (and kept, as dz: 24 bytes per step).
+    // Only the samples of this rotation are read; its steps go to the store.
+    r.begin = store.rows();
     Eigen::Vector3d previous = Eigen::Vector3d::Zero();
     in.for_each(a.last, b.first + 1, [&](const SampleRows& rows) {
       for (std::int64_t j = 0; j < rows.count; ++j) {
@@ -107,17 +120,19 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vect
             const double l1 = lam(t1), l2 = lam(t2);
             const Eigen::Vector3d z1 = previous - ((1 - l1) * ba + l1 * bb);
             const Eigen::Vector3d z2 = sample - ((1 - l2) * ba + l2 * bb);
-            r.dz.push_back((z1 + z2) / 2 * tau0);
+            add_step((z1 + z2) / 2 * tau0);
           }
           previous = sample;
         } else if (i > a.last && i < b.first) {
           // Sample i integrates over the interval before t_i + tau0.
           const double l = lam((static_cast<double>(i) + 0.5) * tau0);
-          r.dz.push_back(sample - ((1 - l) * ba + l * bb) * tau0);
+          add_step(sample - ((1 - l) * ba + l * bb) * tau0);
         }
       }
     });
-    r.white_var = increments ? sigma2 * tau0 * tau0 * static_cast<double>(r.dz.size())
+    flush_steps();
+    r.end = store.rows();
+    r.white_var = increments ? sigma2 * tau0 * tau0 * static_cast<double>(r.end - r.begin)
                              : sigma2 * tau0 * tau0 * (static_cast<double>(steps) - 0.5);
     // Basis of the plane normal to u_{k+1}.
     const Eigen::Vector3d n = u0[k + 1];
@@ -139,14 +154,17 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vect
     Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d sk = Eigen::Matrix3d::Zero();
     const Eigen::Vector3d earth = ginv * r.earth;
-    for (std::size_t i = 0; i < r.dz.size(); ++i) {
-      // The Earth rate of interval k, turned into the current body frame (evaluated at the step's
-      // start: the error is Omega times the step angle, < 1e-6 rad/s).
-      rot = rot * exp_so3(ginv * r.dz[i] - rot.transpose() * earth * r.step_s);
-      if (mk) {
-        sk += rot * r.step_s;  // each step's share of interval k's reading (times tau0)
+    store.read(r.begin, r.end, [&](std::int64_t, std::int64_t n, const double* v) {
+      for (std::int64_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d dz(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+        // The Earth rate of interval k, turned into the current body frame (evaluated at the
+        // step's start: the error is Omega times the step angle, < 1e-6 rad/s).
+        rot = rot * exp_so3(ginv * dz - rot.transpose() * earth * r.step_s);
+        if (mk) {
+          sk += rot * r.step_s;  // each step's share of interval k's reading (times tau0)
+        }
       }
-    }
+    });
     if (mk) {
       *mk = rot.transpose() * sk * ginv;
       *mk1 = Eigen::Matrix3d::Zero();  // interval k+1's reading no longer enters

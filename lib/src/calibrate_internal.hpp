@@ -204,11 +204,14 @@ struct GyroMatrixFit {
   double scale = 1;
 };
 /// `interval_bias` is the gyroscope bias at each interval (a first bias model): the rest of each
-/// static reading is the Earth rate, which turns with the body during a rotation.
+/// static reading is the Earth rate, which turns with the body during a rotation. Only the samples
+/// of the rotations are read; their integration steps are kept in memory up to
+/// `step_memory_bytes`, beyond in a temporary file.
 GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& samples,
                                    const std::vector<StaticInterval>& intervals,
                                    const AccelFit& accel, double reference_temperature_k,
-                                   const std::vector<Eigen::Vector3d>& interval_bias);
+                                   const std::vector<Eigen::Vector3d>& interval_bias,
+                                   std::int64_t step_memory_bytes);
 
 /// Weighted polynomial regression y_k = sum_d c_d x_k^d (d = 0..degree) with known variances;
 /// returns coefficients, their covariance and chi^2.

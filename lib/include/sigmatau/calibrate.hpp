@@ -30,6 +30,10 @@
 /// fits (the gyroscope's includes the accelerometer fit's uncertainty), and scaled by
 /// chi^2/dof when the fit's chi^2 exceeds its 99% quantile (an unmodelled error).
 /// Compensation: x = A^-1 (y - b(T)).
+/// Memory: the steps stream over the samples (calibrate_log.hpp gives the same calibration for a
+/// log of any length in bounded memory); beyond the samples themselves they hold two 8 MiB
+/// histograms, at most 2^21 window statistics per sensor, and the gyroscope's integration steps
+/// up to CalibrationOptions::rotation_memory_bytes (beyond it, in a temporary file).
 ///
 /// References: D. Tedaldi, A. Pretto, E. Menegatti, "A robust and easy to implement method for
 /// IMU calibration without external equipments", ICRA 2014 (imu_tk); C. M. Hurvich, C.-L. Tsai,
@@ -68,6 +72,10 @@ struct CalibrationOptions {
   double min_interval_s = 2.0;          ///< shortest static interval kept [s]
   double confidence = 0.95;             ///< two-sided level of the reported intervals
   double reference_temperature_k = 298.15;  ///< T0 of the temperature model [K] (25 degC)
+  /// Memory for the gyroscope's integration steps [bytes], 24 per sample between consecutive
+  /// static intervals (64 MiB: 2.8 million, hours of rotation at 100 Hz); beyond it they are kept
+  /// in a temporary file and read back at each evaluation of the fit (same results, slower).
+  std::int64_t rotation_memory_bytes = std::int64_t{64} << 20;
 };
 
 /// One static interval [first, last] (sample indices, inclusive).
@@ -96,7 +104,8 @@ struct StaticDetection {
 
 /// Finds the static intervals. Per sample, the statistic is the sum over the axes of the
 /// variance in a centred window of `window_s` (accelerometer, and gyroscope when present); its
-/// noise floor is the 25th percentile over the log (a calibration log is mostly static), and a
+/// noise floor is the exact 25th percentile over the log (a calibration log is mostly static; it is
+/// selected in bounded memory, by histogram passes over the values' bit patterns), and a
 /// sample is static when the statistic is at most kStaticThresholdFactor times the floor for
 /// both sensors. Runs of at least `min_interval_s` become intervals, unless on some axis their 10 batch
 /// means vary more than 10 times what the within-run noise predicts (slow motion). Throws Error on bad input

@@ -60,9 +60,9 @@ class CalibrationLog {
 
 /// calibrate() on a CalibrationLog sampled at `rate_hz` [Hz], holding increments per sample when
 /// `increments`. Same results as calibrate() on the same values as a CalibrationInput, in memory
-/// independent of the log's length beyond the log itself (the detector holds two 8 MiB
-/// histograms and at most 2^21 candidates per sensor; the gyroscope fit keeps the samples
-/// between consecutive static intervals, 24 bytes each). Throws like calibrate().
+/// independent of the log's length beyond the log's own budget (the detector holds two 8 MiB
+/// histograms and at most 2^21 candidates per sensor; the gyroscope fit its integration steps up
+/// to options.rotation_memory_bytes). Throws like calibrate().
 CalibrationResult calibrate(const CalibrationLog& log, double rate_hz, bool increments,
                             const CalibrationOptions& options);
 
