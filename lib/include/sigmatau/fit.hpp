@@ -8,7 +8,9 @@
 /// sampled_avar), linear in theta = (Q^2, N^2, B^2, K^2, R^2) >= 0, and solved by non-negative
 /// generalised least squares whose weight is the inverse of the exact covariance of the OAVAR
 /// estimates across taus under the fitted model (oavar_covariance), iterated with the model.
-/// Candidate subsets of terms are compared by BIC (one weight matrix, the largest model's);
+/// Candidate subsets of terms are compared by BIC (one weight matrix, the largest model's); when
+/// that finds B, K and R are decided again with each model's own weights by an approximate
+/// likelihood of the curve (cube-root chi-squared marginals); a ramp has a 2 % prior;
 /// terms not kept are reported as one-sided upper bounds from the variance under the bound.
 ///
 /// References:
@@ -19,6 +21,8 @@
 ///    regression for time series model estimation", IEEE SPL 23(5) (2016) 597.
 ///  - C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems", 1974, ch. 23 (NNLS).
 ///  - G. Schwarz, "Estimating the dimension of a model", Ann. Stat. 6 (1978) 461 (BIC).
+///  - E. B. Wilson, M. M. Hilferty, "The distribution of chi-square", PNAS 17 (1931) 684 (the
+///    cube root of a chi-squared variable is nearly Gaussian: the selection's likelihood).
 ///  - S. G. Self, K.-Y. Liang, "Asymptotic properties of maximum likelihood estimators and
 ///    likelihood ratio tests under nonstandard conditions", JASA 82 (1987) 605 (a parameter on
 ///    its boundary: the chi-bar-squared 50:50 mixture behind the penalty).
