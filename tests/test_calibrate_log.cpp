@@ -3,14 +3,13 @@
 // to the last bit (the JSON text compared whole), and the detector's noise floor is the exact 25th
 // percentile of the window statistic also when it is found by histogram passes (more than 2^21
 // windows) and when every statistic ties.
-#include "sigmatau/calibrate_log.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
 #include "sigmatau/calibrate.hpp"
+#include "sigmatau/calibrate_log.hpp"
 #include "sigmatau/simulate.hpp"
 #include "test_support.hpp"
 
@@ -102,7 +101,8 @@ std::vector<double> window_statistics(const std::array<std::vector<double>, 3>& 
     for (std::int64_t i = h; i + h < n; ++i) {
       const auto a = static_cast<std::size_t>(i - h), b = static_cast<std::size_t>(i + h + 1);
       const double m = (s1[b] - s1[a]) / len;
-      s[static_cast<std::size_t>(i - h)] += std::max(0.0, ((s2[b] - s2[a]) - len * m * m) / (len - 1));
+      s[static_cast<std::size_t>(i - h)] +=
+          std::max(0.0, ((s2[b] - s2[a]) - len * m * m) / (len - 1));
     }
   }
   return s;
@@ -181,7 +181,8 @@ TEST_CASE("the noise floor is the exact 25th percentile above 2^21 windows") {
   o.rotation_memory_bytes = 1;
   CalibrationLog log(true, false, 1);
   fill(log, in);
-  CHECK(calibration_json(calibrate(log, in.rate_hz, false, o)) == calibration_json(calibrate(in, o)));
+  CHECK(calibration_json(calibrate(log, in.rate_hz, false, o)) ==
+        calibration_json(calibrate(in, o)));
 }
 
 TEST_CASE("a floor where every window statistic ties is found bit by bit") {
@@ -190,7 +191,8 @@ TEST_CASE("a floor where every window statistic ties is found bit by bit") {
   const std::size_t n = 2'200'000;
   CalibrationInput in;
   in.rate_hz = 100;
-  in.accel = {std::vector<double>(n, 0.1), std::vector<double>(n, -0.2), std::vector<double>(n, 9.8)};
+  in.accel = {std::vector<double>(n, 0.1), std::vector<double>(n, -0.2),
+              std::vector<double>(n, 9.8)};
   const StaticDetection d = detect_static_intervals(in, CalibrationOptions{});
   CHECK(d.accel_floor == 0.0);
   REQUIRE(d.intervals.size() == 1);

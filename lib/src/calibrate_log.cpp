@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "analysis_spill.hpp"
-#include "phase_spill.hpp"
 #include "calibrate_internal.hpp"
+#include "phase_spill.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
@@ -99,9 +99,8 @@ void CalibrationLog::read(
     const std::int64_t step = detail::ValueSpill::kReadValues / c;
     for (std::int64_t r = begin; r < end;) {
       const std::int64_t n = std::min(step, end - r);
-      m.spill->for_each(r * c, (r + n) * c, [&](std::span<const double> values) {
-        each(r, n, values.data());
-      });
+      m.spill->for_each(r * c, (r + n) * c,
+                        [&](std::span<const double> values) { each(r, n, values.data()); });
       r += n;
     }
     return;
@@ -145,9 +144,11 @@ void InputSamples::for_each(std::int64_t begin, std::int64_t end,
   rows.count = end - begin;
   const auto at = [&](const std::vector<double>& v) { return v.data() + begin; };
   for (int a = 0; a < 3; ++a) {
-    rows.column[static_cast<std::size_t>(kAccelChannel + a)] = at(in_.accel[static_cast<std::size_t>(a)]);
+    rows.column[static_cast<std::size_t>(kAccelChannel + a)] =
+        at(in_.accel[static_cast<std::size_t>(a)]);
     if (has_gyro())
-      rows.column[static_cast<std::size_t>(kGyroChannel + a)] = at(in_.gyro[static_cast<std::size_t>(a)]);
+      rows.column[static_cast<std::size_t>(kGyroChannel + a)] =
+          at(in_.gyro[static_cast<std::size_t>(a)]);
   }
   if (has_temperature()) rows.column[kTemperatureChannel] = at(in_.temperature_k);
   each(rows);
