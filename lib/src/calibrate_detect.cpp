@@ -62,7 +62,8 @@ struct Invalid {
   void check(const Converted& c, std::int64_t i, bool gyro_present, bool temperature_present) {
     for (int a = 0; a < 3; ++a) {
       if (accel < 0 && !std::isfinite(c.v[static_cast<std::size_t>(a)])) accel = i;
-      if (gyro_present && gyro < 0 && !std::isfinite(c.v[static_cast<std::size_t>(3 + a)])) gyro = i;
+      if (gyro_present && gyro < 0 && !std::isfinite(c.v[static_cast<std::size_t>(3 + a)]))
+        gyro = i;
     }
     if (temperature_present && temperature < 0 && !(c.v[6] > 0 && std::isfinite(c.v[6])))
       temperature = i;
@@ -148,7 +149,8 @@ void batch_ratio(const std::array<double, kBatches>& sums, std::int64_t n, doubl
   std::array<double, kBatches> means{};
   double grand = 0;
   for (int b = 0; b < kBatches; ++b) {
-    means[static_cast<std::size_t>(b)] = sums[static_cast<std::size_t>(b)] / static_cast<double>(per);
+    means[static_cast<std::size_t>(b)] =
+        sums[static_cast<std::size_t>(b)] / static_cast<double>(per);
     grand += means[static_cast<std::size_t>(b)] / kBatches;
   }
   double var = 0;
@@ -289,7 +291,8 @@ StaticDetection detect_static(const CalibrationSamples& in, const CalibrationOpt
     int my_count = 0;
     s.accel_cov = sp.accel / count;
     for (int a = 0; a < 3; ++a)
-      batch_ratio(sp.batch[static_cast<std::size_t>(a)], n, sp.accel(a, a), my_sum, my_count, worst);
+      batch_ratio(sp.batch[static_cast<std::size_t>(a)], n, sp.accel(a, a), my_sum, my_count,
+                  worst);
     if (gyro) {
       s.gyro_sample_cov = sp.gyro;
       s.gyro_cov = s.gyro_sample_cov / count;
