@@ -45,7 +45,7 @@ constexpr double kDigammaHalf = -std::numbers::egamma - 2 * std::numbers::ln2;
 /// 691 / (32760 x^12), is below 1e-16 there.
 constexpr double kDigammaAsymptotic = 16;
 /// The flicker far field (Taylor series in delta / u) from |u| >= this times (m_a + m_b): its
-/// terms shrink by (m_a + m_b) / |u| <= 1/6 per order (kFlickerOrders reach 1e-17), while the
+/// terms shrink by (m_a + m_b) / |u| <= 1/6 per order (summed to kSeriesTolerance), while the
 /// direct sum of nine G ~ l^2 ln l loses about (2 x 6)^4 x 16 ~ 3e5 ulps there.
 constexpr double kFlickerFarRatio = 6;
 constexpr int kFlickerMaxOrder = 26;
