@@ -2,8 +2,9 @@
 //
 // Glossary:
 //   y_i     rate samples (per-sample process), tau0 sample interval [s], N = M + 1 phase points
-//   d^a_k   second difference over m_a: (1/m_a)[sum_{i=k+m_a+1}^{k+2m_a} y_i - sum_{i=k+1}^{k+m_a} y_i]
-//           (OAVAR s2_a = sum_{k<n_a} (d^a_k)^2 / (2 n_a), n_a = N - 2 m_a)
+//   d^a_k   second difference over m_a: (1/m_a)[sum_{i=k+m_a+1}^{k+2m_a} y_i -
+//           sum_{i=k+1}^{k+m_a} y_i] (OAVAR s2_a = sum_{k<n_a} (d^a_k)^2 / (2 n_a),
+//           n_a = N - 2 m_a)
 //   c_ab(L) Cov(d^a_k, d^b_{k+L}) = int_{-1/2}^{1/2} S(f) G_a(f) conj(G_b(f)) e^{i 2 pi f L} df
 //           with f in cycles per sample, S the two-sided per-sample PSD of y and G the transfer
 //           function of the d kernel. G_a conj(G_b) = Phi_ab(f) e^{-i 2 pi f (m_a - m_b)},
@@ -14,7 +15,8 @@
 //   Cov(s2_a, s2_b) = (1/(4 n_a n_b)) sum_L w(L) [2 c_ab(L)^2 + 4 mu_a mu_b c_ab(L)].
 // Per-sample PSDs for unit parameters (s = sin(pi f), THEORY.md sections 2 and 6):
 //   Q: 4 s^2 / tau0^2 (y = (e_k - e_{k-1}) / tau0, var e = Q^2)   N: 1 / tau0
-//   B: 1 / (2 |s|) (Kasdin, untruncated)   K: tau0 / (4 s^2)   GM: (1-phi^2)/(1 - 2 phi cos w + phi^2)
+//   B: 1 / (2 |s|) (Kasdin, untruncated)   K: tau0 / (4 s^2)
+//   GM: (1 - phi^2) / (1 - 2 phi cos w + phi^2)
 // Quantization is the one term modelled as non-Gaussian: the phase error e of a rounding
 // quantizer is uniform (THEORY.md section 6), with fourth cumulant kappa4 = -1.2 Q^4, which adds
 //   kappa4 / (4 n_a n_b m_a^2 m_b^2 tau0^4) sum_i F_a(i) F_b(i)
@@ -25,7 +27,8 @@
 // generalized covariance of the integrated rate in O(1) per lag (compact support |u| <= m_a +
 // m_b and piecewise polynomial for Q, N, K; closed forms for B and GM), and the sum over every
 // lag takes O(log N) evaluations with a discrete Gauss rule between c's breakpoints: exact up to
-// rounding for Q, N, K and the ramp, ~1e-13 for B and GM, O(1) memory per pair. The previous
+// rounding for Q, N, K and the ramp (3e-15 relative at m = 2^22), within 3e-14 of the direct sum
+// over every lag for B and GM (tests/test_fit_covariance.cpp), O(1) memory per pair. The previous
 // FFT of length 8 (m_a + m_b) (kept as a reference, fit_covariance_fft.cpp) needed ~48 P bytes
 // (3.2 GiB at m = 2^22) and truncated the flicker tail beyond 4 (m_a + m_b), which moved B's
 // sums by up to ~1e-2 (bench/results_fit_covariance.md).
@@ -120,7 +123,8 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
   for (std::size_t b = 0; b < taus; ++b) {
     for (std::size_t a = 0; a <= b; ++a) {
       const std::int64_t ma = basis.m[a], mb = basis.m[b];
-      const LagSums sums = covariance_lag_sums(PairCorrelation(ma, mb, tau0_s, gm_rate), n_phase_points);
+      const LagSums sums =
+          covariance_lag_sums(PairCorrelation(ma, mb, tau0_s, gm_rate), n_phase_points);
       const double nn = static_cast<double>(n_phase_points - 2 * ma) *
                         static_cast<double>(n_phase_points - 2 * mb);
       Eigen::MatrixXd& h = basis.h[basis.pair_index(a, b)];

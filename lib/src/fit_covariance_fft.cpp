@@ -26,8 +26,7 @@ constexpr std::int64_t kMinFft = 256;
 }  // namespace
 
 std::vector<std::vector<double>> fft_lag_correlations(std::int64_t ma, std::int64_t mb,
-                                                      double tau0_s,
-                                                      std::optional<double> gm_rate,
+                                                      double tau0_s, std::optional<double> gm_rate,
                                                       std::int64_t big_p) {
   const std::int64_t half = big_p / 2;
   const int terms = gm_rate ? kLagTerms + 1 : kLagTerms;
@@ -41,7 +40,8 @@ std::vector<std::vector<double>> fft_lag_correlations(std::int64_t ma, std::int6
   }
   // sin(pi p m / P) with p m reduced exactly modulo 2P.
   const auto sin_of = [big_p](std::int64_t p, std::int64_t mult) {
-    return std::sin(kPi * static_cast<double>((p * mult) % (2 * big_p)) / static_cast<double>(big_p));
+    return std::sin(kPi * static_cast<double>((p * mult) % (2 * big_p)) /
+                    static_cast<double>(big_p));
   };
   const double mm = static_cast<double>(ma) * static_cast<double>(mb);
   std::vector<std::vector<double>> c(static_cast<std::size_t>(terms));
@@ -53,10 +53,18 @@ std::vector<std::vector<double>> fft_lag_correlations(std::int64_t ma, std::int6
       const double num = sa * sa * sb * sb / mm, s2 = s * s;
       double x = 0;
       switch (t) {
-        case 0: x = 16 * num / (tau0_s * tau0_s); break;
-        case 1: x = 4 * num / s2 / tau0_s; break;
-        case 2: x = 2 * num / (s2 * std::abs(s)); break;
-        case 3: x = tau0_s * num / (s2 * s2); break;
+        case 0:
+          x = 16 * num / (tau0_s * tau0_s);
+          break;
+        case 1:
+          x = 4 * num / s2 / tau0_s;
+          break;
+        case 2:
+          x = 2 * num / (s2 * std::abs(s));
+          break;
+        case 3:
+          x = tau0_s * num / (s2 * s2);
+          break;
         default: {
           const double w = 2 * kPi * static_cast<double>(p) / static_cast<double>(big_p);
           x = (1 - phi * phi) / (1 - 2 * phi * std::cos(w) + phi * phi) * 4 * num / s2;
@@ -67,7 +75,8 @@ std::vector<std::vector<double>> fft_lag_correlations(std::int64_t ma, std::int6
     fftw_execute(plan);
     auto& ct = c[static_cast<std::size_t>(t)];
     ct.resize(static_cast<std::size_t>(half + 1));
-    for (std::int64_t i = 0; i <= half; ++i) ct[static_cast<std::size_t>(i)] = out[i] / static_cast<double>(big_p);
+    for (std::int64_t i = 0; i <= half; ++i)
+      ct[static_cast<std::size_t>(i)] = out[i] / static_cast<double>(big_p);
   }
   {
     std::lock_guard lock(fftw_planner_mutex());

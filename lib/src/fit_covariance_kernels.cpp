@@ -87,10 +87,9 @@ double p2(double x, bool minus_half) {
 /// with O(l - 1) = O(l) - 1/(2l - 1).
 constexpr double kFarL2Log = 1 / (2 * kPi);
 constexpr double kFarLog = -1 / (8 * kPi);
-constexpr std::array<double, 3> kFarInverse{
-    (2 / kPi) * (-7.0 / 3840 - 1.0 / 384),
-    (2 / kPi) * (31.0 / 32256 + 7.0 / 15360),
-    (2 / kPi) * (-127.0 / 122880 - 31.0 / 129024)};
+constexpr std::array<double, 3> kFarInverse{(2 / kPi) * (-7.0 / 3840 - 1.0 / 384),
+                                            (2 / kPi) * (31.0 / 32256 + 7.0 / 15360),
+                                            (2 / kPi) * (-127.0 / 122880 - 31.0 / 129024)};
 
 /// c_B(u) for |u| >= kFlickerFarRatio (m_a + m_b): sum over even k >= 4 of G^(k)(|u|) M_k / k!
 /// / (m_a m_b), M_k = sum_ij g_i g_j delta_ij^k; M_k / (k! u^k) = 4 sum_{r even in [2, k-2]}

@@ -17,7 +17,6 @@
 // Bernstein-ellipse case rho = 3 + sqrt(8) = 5.83: the error falls as rho^(-2 kNodes) ~ 1e-18
 // (measured against the direct sum over every lag in tests/test_fit_covariance.cpp).
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -50,8 +49,11 @@ DiscreteGaussRule cached_rule(std::int64_t big_m) {
 class Accumulator {
  public:
   Accumulator(const PairCorrelation& corr, std::int64_t na, std::int64_t nb)
-      : corr_(corr), na_(static_cast<double>(na)), nb_(static_cast<double>(nb)),
-        terms_(corr.terms()), c_(static_cast<std::size_t>(terms_)) {
+      : corr_(corr),
+        na_(static_cast<double>(na)),
+        nb_(static_cast<double>(nb)),
+        terms_(corr.terms()),
+        c_(static_cast<std::size_t>(terms_)) {
     sums_.cc = Eigen::MatrixXd::Zero(terms_, terms_);
     sums_.c1 = Eigen::VectorXd::Zero(terms_);
   }
@@ -72,7 +74,8 @@ class Accumulator {
     const std::int64_t count = last - first + 1;
     if (count < kMinRun) return add_direct(first, last);
     const DiscreteGaussRule rule = cached_rule(count);
-    for (int j = 0; j < kNodes; ++j) add(static_cast<double>(first) + rule.nodes(j), rule.weights(j));
+    for (int j = 0; j < kNodes; ++j)
+      add(static_cast<double>(first) + rule.nodes(j), rule.weights(j));
   }
   LagSums finish() {
     for (int t = 0; t < terms_; ++t) {
