@@ -59,20 +59,27 @@ std::vector<LagSums> all_sums(const std::vector<std::int64_t>& m, std::int64_t n
   return out;
 }
 
-/// Every lag summed one by one with the new path's correlations (its quadrature's reference).
+/// Every lag summed one by one with the new path's correlations (its quadrature's reference),
+/// accumulated in long double so that 4 million additions do not hide the quadrature's error.
 LagSums direct_lag_sums(const PairCorrelation& corr, std::int64_t n_phase) {
   const std::int64_t na = n_phase - 2 * corr.ma(), nb = n_phase - 2 * corr.mb();
   const int t = corr.terms();
-  LagSums s{Eigen::MatrixXd::Zero(t, t), Eigen::VectorXd::Zero(t)};
+  std::vector<long double> cc(static_cast<std::size_t>(t * t)), c1(static_cast<std::size_t>(t));
   std::vector<double> c(static_cast<std::size_t>(t));
   for (std::int64_t lag = -(na - 1); lag <= nb - 1; ++lag) {
     corr.evaluate(static_cast<double>(lag), c);
-    const double w = static_cast<double>(std::min(na, nb - lag) - std::max<std::int64_t>(0, -lag));
-    for (int i = 0; i < t; ++i) {
-      s.c1(i) += w * c[static_cast<std::size_t>(i)];
-      for (int j = 0; j < t; ++j) {
-        s.cc(i, j) += w * c[static_cast<std::size_t>(i)] * c[static_cast<std::size_t>(j)];
-      }
+    const auto w =
+        static_cast<long double>(std::min(na, nb - lag) - std::max<std::int64_t>(0, -lag));
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      c1[i] += w * c[i];
+      for (std::size_t j = 0; j < c.size(); ++j) cc[i * c.size() + j] += w * c[i] * c[j];
+    }
+  }
+  LagSums s{Eigen::MatrixXd::Zero(t, t), Eigen::VectorXd::Zero(t)};
+  for (int i = 0; i < t; ++i) {
+    s.c1(i) = static_cast<double>(c1[static_cast<std::size_t>(i)]);
+    for (int j = 0; j < t; ++j) {
+      s.cc(i, j) = static_cast<double>(cc[static_cast<std::size_t>(i * t + j)]);
     }
   }
   return s;
