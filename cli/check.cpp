@@ -2,7 +2,10 @@
 // Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line).
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -16,6 +19,23 @@
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
+
+std::string read_text_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw Error(path + ": cannot read: Is a directory (expected a JSON file)");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) throw Error(path + ": cannot read: " + std::strerror(errno));
+  return text;
+}
+
 namespace {
 
 struct CheckArguments {
@@ -27,11 +47,6 @@ struct CheckArguments {
   bool force = false;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// A value in the printed unit when it converts, else in SI.
 std::string in_printed_unit(double value_si, const std::string& unit) {
@@ -59,7 +74,7 @@ void run_check(const CheckArguments& args) {
   }
   if (!args.output.empty()) check_can_write(args.output, args.force);
   const DataSheet sheet = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
-  const auto measured = measured_parameters_from_json(read_text(args.result), args.result);
+  const auto measured = measured_parameters_from_json(read_text_file(args.result), args.result);
   ComplianceOptions options;
   options.convention = parse_density_convention(args.convention);
   const auto items = check_compliance(measured, sheet, options);

@@ -74,9 +74,7 @@ void run_convert(const ConvertArguments& args) {
   std::vector<TriadNoise> triads;
   std::string source;
   if (!args.fit.empty()) {
-    std::ifstream in(args.fit, std::ios::binary);
-    if (!in) throw Error(args.fit + ": cannot open");
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string text = read_text_file(args.fit);
     triads = triads_from_fit_json(text, args.fit);
     source = "noise-term fit " + args.fit;
   } else if (!args.spec.empty()) {

@@ -2,14 +2,43 @@
 // Exit codes: 0 ok, 1 a compliance check failed, 2 bad input or usage, 3 internal error.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
 #include "verbs.hpp"
 
+namespace {
+
+/// Interrupted (Ctrl-C, kill, hang-up): remove the partial temporary output files, then die of
+/// the same signal with its default action, so the shell sees the usual status (130 for SIGINT).
+extern "C" void remove_temporaries_and_die(int signal_number) {
+  sigmatau::remove_pending_temporaries();
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+/// Installs the handler for SIGINT, SIGTERM and SIGHUP, except where the signal is ignored
+/// (`nohup`, a background job of a non-interactive shell): that choice is kept.
+void clean_up_outputs_on_interrupt() {
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    if (::sigaction(signal_number, nullptr, &current) != 0) continue;
+    if (current.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = remove_temporaries_and_die;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(signal_number, &action, nullptr);
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  clean_up_outputs_on_interrupt();
   CLI::App app{"sigmatau: how noisy is this IMU, does it meet its data sheet, and what goes into "
                "the filter"};
   app.set_version_flag("--version", std::string("sigmatau ") + SIGMATAU_VERSION);

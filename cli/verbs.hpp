@@ -3,7 +3,13 @@
 // lib, formats output; no numerics here.
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace sigmatau::cli {
+
+/// The whole of a small text input (a JSON result). Throws Error naming `path` and the reason
+/// when it cannot be opened or read (missing, unreadable, a directory).
+std::string read_text_file(const std::string& path);
 
 /// Thrown by a verb after its output is complete to end with a non-zero status that is not an
 /// error (e.g. `check` exits 1 when a compliance check failed).

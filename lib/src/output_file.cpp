@@ -4,6 +4,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <random>
@@ -26,7 +28,44 @@ std::filesystem::path temporary_name(const std::filesystem::path& path) {
   return name;
 }
 
+// Temporary names of the open AtomicOutputFiles, readable from a signal handler: a slot is
+// claimed (free -> busy) with a compare-exchange, its name copied, then published (armed);
+// remove_pending_temporaries() only reads armed slots. Lock-free atomics are async-signal-safe.
+constexpr std::size_t kPendingSlots = 32;        // far more outputs than any verb has open at once
+constexpr std::size_t kPendingPathBytes = 4096;  // PATH_MAX on Linux, with its NUL
+enum SlotState : int { kFree = 0, kBusy = 1, kArmed = 2 };
+struct PendingSlot {
+  std::atomic<int> state{kFree};
+  std::array<char, kPendingPathBytes> path{};
+};
+std::array<PendingSlot, kPendingSlots> pending_slots;
+static_assert(std::atomic<int>::is_always_lock_free);
+
+/// Slot index holding `path`, or -1 when the name is too long or every slot is taken.
+int track_pending(const std::filesystem::path& path) {
+  const std::string& name = path.native();
+  if (name.size() >= kPendingPathBytes) return -1;
+  for (std::size_t i = 0; i < kPendingSlots; ++i) {
+    int expected = kFree;
+    if (!pending_slots[i].state.compare_exchange_strong(expected, kBusy)) continue;
+    std::memcpy(pending_slots[i].path.data(), name.c_str(), name.size() + 1);
+    pending_slots[i].state.store(kArmed, std::memory_order_release);
+    return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void untrack_pending(int slot) {
+  if (slot >= 0) pending_slots[static_cast<std::size_t>(slot)].state.store(kFree);
+}
+
 }  // namespace
+
+void remove_pending_temporaries() noexcept {
+  for (auto& slot : pending_slots) {
+    if (slot.state.load(std::memory_order_acquire) == kArmed) ::unlink(slot.path.data());
+  }
+}
 
 void check_can_write(const std::filesystem::path& path, bool overwrite) {
   std::error_code ec;
@@ -46,11 +85,18 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)
   std::filesystem::create_directories(parent, ec);
   if (ec) throw Error("cannot create directory " + parent.string() + ": " + ec.message());
   temporary_ = temporary_name(path_);
+  // Tracked before the file exists, so an interrupt never finds it created but unknown.
+  pending_slot_ = track_pending(temporary_);
   fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw Error("cannot write " + path_.string() + ": " + errno_text());
+  if (fd_ < 0) {
+    const std::string reason = errno_text();
+    untrack_pending(pending_slot_);
+    throw Error("cannot write " + path_.string() + ": " + reason);
+  }
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
+  untrack_pending(pending_slot_);
   if (committed_) return;
   if (fd_ >= 0) ::close(fd_);
   ::unlink(temporary_.c_str());
@@ -85,6 +131,10 @@ void AtomicOutputFile::commit() {
   if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
     throw Error("cannot rename into " + path_.string() + ": " + errno_text());
   }
+  // Untracked at once: the temporary name is gone, and a later interrupt must not unlink a
+  // file of that name that something else might create.
+  untrack_pending(pending_slot_);
+  pending_slot_ = -1;
   committed_ = true;
 }
 

@@ -19,6 +19,14 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// Throws the same "exists" Error as write_file_atomically, early, before long work starts.
 void check_can_write(const std::filesystem::path& path, bool overwrite);
 
+/// Unlinks the temporary file of every AtomicOutputFile that is open and not yet committed, and
+/// nothing else (the outputs themselves are never touched). Uses only async-signal-safe calls,
+/// so a SIGINT / SIGTERM handler can call it before the process dies: an interrupted run then
+/// leaves neither its output nor a partial "<path>.tmp-<random>" behind. A temporary name longer
+/// than 4095 bytes, or more than 32 open at once, is not tracked (it is still removed on the
+/// ordinary paths: commit, exception, destructor).
+void remove_pending_temporaries() noexcept;
+
 /// A file written piece by piece (too large to hold as one string) that appears at `path` only
 /// when commit() succeeds: it is written to "<path>.tmp-<random>" in the same directory, and the
 /// temporary file is removed if the object is destroyed before commit() (an exception on the
@@ -43,6 +51,7 @@ class AtomicOutputFile {
   std::filesystem::path temporary_;
   bool overwrite_ = false;
   int fd_ = -1;
+  int pending_slot_ = -1;  ///< slot in the interrupt clean-up table, -1 if not tracked
   bool committed_ = false;
 };
 

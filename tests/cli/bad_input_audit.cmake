@@ -1,0 +1,62 @@
+# Regression cases from the bad-input and output-safety audit of every verb (November 2026).
+# Each case is a failure the audit found: exit 2 with the file and the reason on stderr, no
+# internal error (exit 3), and nothing partial left next to an output.
+set(audit_out ${CMAKE_CURRENT_BINARY_DIR}/cli_audit)
+file(MAKE_DIRECTORY ${audit_out})
+set(audit_fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json)
+
+# A directory given where a JSON result is read was an internal error (exit 3, "basic_filebuf::
+# underflow error reading the file") in `check` and `convert --fit`.
+sigmatau_cli_test(NAME cli_audit_check_result_is_directory EXIT 2
+  STDERR "cli_audit: cannot read: Is a directory \\(expected a JSON file\\)"
+  NO_FILE ${audit_out}/check_dir.txt
+  ARGS check --spec adi_adis16465 ${audit_out} -o ${audit_out}/check_dir.txt)
+sigmatau_cli_test(NAME cli_audit_convert_fit_is_directory EXIT 2
+  STDERR "cli_audit: cannot read: Is a directory \\(expected a JSON file\\)"
+  NO_FILE ${audit_out}/convert_dir.json
+  ARGS convert --fit ${audit_out} --rate 100 --to json -o ${audit_out}/convert_dir.json)
+# A missing result said only "cannot open"; it now says why, as the log readers do.
+sigmatau_cli_test(NAME cli_audit_check_result_missing EXIT 2
+  STDERR "no_such_result.json: cannot open: No such file or directory"
+  ARGS check --spec adi_adis16465 ${audit_out}/no_such_result.json)
+sigmatau_cli_test(NAME cli_audit_convert_fit_missing EXIT 2
+  STDERR "no_such_result.json: cannot open: No such file or directory"
+  ARGS convert --fit ${audit_out}/no_such_result.json --rate 100 --to json)
+# The reading path still works for a real result (the directory check must not reject files).
+sigmatau_cli_test(NAME cli_audit_convert_fit_file_still_read EXIT 0 STDOUT "\"rate_hz\""
+  ARGS convert --fit ${audit_fit} --rate 100 --to json)
+
+# An interrupted run (Ctrl-C, kill, hang-up) left its partial "<output>.tmp-<random>" next to the
+# output: `simulate` streams a long log into the temporary file. The run must die of the signal
+# (exit 128 + signal number), remove the temporary file, and leave an existing output untouched.
+# `set -m` gives the background job the default SIGINT action (a non-interactive shell otherwise
+# starts it with SIGINT ignored). The simulated log is long (30 h at 1 kHz) so the signal always
+# arrives mid-write; a failure kills it at once so no multi-GB file is finished.
+# Arguments of the script: $1 the CLI, $2 a scratch directory, $3 the signal, $4 the exit code.
+set(interrupt_check [=[
+set -m
+dir=$2; out=$dir/log.csv
+rm -rf "$dir" && mkdir -p "$dir" && echo KEEP > "$out" || exit 1
+"$1" simulate --model "N=0.15 deg/sqrt(h)" --rate 1000 --duration 30h -o "$out" --force \
+  >/dev/null 2>&1 &
+pid=$!
+for i in $(seq 600); do ls "$dir" | grep -q '\.tmp-' && break; sleep 0.1; done
+if ! ls "$dir" | grep -q '\.tmp-'; then
+  echo "no temporary file appeared"; kill -KILL $pid; rm -rf "$dir"; exit 1
+fi
+kill -"$3" $pid; wait $pid; rc=$?
+left=$(ls -A "$dir" | grep -v '^log\.csv$'); kept=$(cat "$out")
+echo "exit $rc (expected $4); left behind: '$left'; output: '$kept' (expected KEEP)"
+[ "$rc" != "$4" ] && kill -KILL $pid 2>/dev/null
+rm -rf "$dir"
+[ "$rc" = "$4" ] && [ -z "$left" ] && [ "$kept" = KEEP ]
+]=])
+foreach(signal_exit IN ITEMS INT:130 TERM:143 HUP:129)
+  string(REPLACE ":" ";" pair "${signal_exit}")
+  list(GET pair 0 signal)
+  list(GET pair 1 code)
+  add_test(NAME cli_audit_interrupt_${signal}_leaves_no_temporary
+           COMMAND bash -c "${interrupt_check}" interrupt $<TARGET_FILE:sigmatau_cli>
+                   ${audit_out}/interrupt_${signal} ${signal} ${code})
+  set_tests_properties(cli_audit_interrupt_${signal}_leaves_no_temporary PROPERTIES TIMEOUT 120)
+endforeach()
