@@ -369,8 +369,14 @@ void add_fit_command(CLI::App& app) {
              "supports, and/or the IEEE slope read-outs");
   add_log_options(*command, args->log);
   command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
+  // An explicitly empty --terms used to mean the BIC choice silently; it is an error like --stat "".
   command->add_option("--terms", args->terms,
-                      "force the model, e.g. N,B,K (default: chosen by BIC among Q,N,B,K,R)");
+                      "force the model, e.g. N,B,K (default: chosen by BIC among Q,N,B,K,R)")
+      ->check([](const std::string& value) {
+        return value.empty() ? std::string("empty list: give terms such as N,B,K, or leave --terms "
+                                           "out for the BIC choice")
+                             : std::string();
+      });
   command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | json")->capture_default_str();

@@ -1,6 +1,7 @@
 // `sigmatau psd`: Welch PSD of every channel and the white-noise density read from it.
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -240,8 +241,17 @@ void add_psd_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "psd", "Welch power spectral density (one-sided) and the white-noise density read from it");
   add_log_options(*command, args->log);
+  // Checked only when given (0, the default, means "choose"): a zero or negative length used to be
+  // taken silently as that default.
   command->add_option("--segment", args->segment,
-                      "samples per segment (default: largest power of two <= samples/8)");
+                      "samples per segment (default: largest power of two <= samples/8)")
+      ->check([](const std::string& value) {
+        std::int64_t samples = 0;
+        const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), samples);
+        return ec == std::errc() && end == value.data() + value.size() && samples > 0
+                   ? std::string()
+                   : "expected a positive number of samples (at least 4), got " + value;
+      });
   command->add_option("--overlap", args->overlap, "overlap of consecutive segments, 0..<1")
       ->capture_default_str();
   command->add_option("--window", args->window, "hann | blackman-harris | rectangular")

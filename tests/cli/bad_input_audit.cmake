@@ -60,3 +60,26 @@ foreach(signal_exit IN ITEMS INT:130 TERM:143 HUP:129)
                    ${audit_out}/interrupt_${signal} ${signal} ${code})
   set_tests_properties(cli_audit_interrupt_${signal}_leaves_no_temporary PROPERTIES TIMEOUT 120)
 endforeach()
+
+# Options whose bad values were taken silently as the default: psd --segment 0 or negative
+# (the default 0 means "choose"; only a given value is checked) and fit --terms "" (the BIC
+# choice). Both are usage errors now, like --stat "".
+set(audit_log ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv)
+sigmatau_cli_test(NAME cli_audit_psd_negative_segment EXIT 2
+  STDERR "--segment: expected a positive number of samples \\(at least 4\\), got -4"
+  NO_FILE ${audit_out}/psd_negative_segment.txt
+  ARGS psd ${audit_log} --time-column t --segment -4 -o ${audit_out}/psd_negative_segment.txt)
+sigmatau_cli_test(NAME cli_audit_psd_zero_segment EXIT 2
+  STDERR "--segment: expected a positive number of samples \\(at least 4\\), got 0"
+  ARGS psd ${audit_log} --time-column t --segment 0)
+sigmatau_cli_test(NAME cli_audit_psd_given_segment_still_used EXIT 0
+  STDOUT "\"segment_length\": 64"
+  ARGS psd ${audit_log} --time-column t --segment 64 --format json)
+# An empty argument cannot pass through sigmatau_cli_test (CMake drops empty list elements), so
+# this case runs through bash: $1 the CLI, $2 the log, $3 the output that must not appear.
+add_test(NAME cli_audit_fit_empty_terms
+         COMMAND bash -c [=[
+err=$("$1" fit "$2" --time-column t --terms "" -o "$3" 2>&1 >/dev/null); rc=$?
+echo "exit $rc (expected 2): $err"
+[ "$rc" = 2 ] && [ ! -e "$3" ] && printf '%s' "$err" | grep -q -- "--terms: empty list: give terms"
+]=] empty_terms $<TARGET_FILE:sigmatau_cli> ${audit_log} ${audit_out}/fit_empty_terms.txt)
