@@ -1,5 +1,6 @@
 // `sigmatau analyze` (the whole chain into one output directory) and `sigmatau demo` (the same on
 // a log simulated from a shipped data sheet).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -177,12 +178,33 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
     if (list.empty()) return;
     const auto columns = split_list(list, option);
     if (columns.size() != 3) throw Error(std::string(option) + " needs three columns x,y,z");
-    for (int axis = 0; axis < 3; ++axis) forced[columns[axis]] = {sensor, axis};
+    for (int axis = 0; axis < 3; ++axis) {
+      // A name that is not a channel used to be skipped silently (the sensor then had two axes
+      // or none, and the run still exited 0).
+      if (std::find(names.begin(), names.end(), columns[axis]) == names.end()) {
+        std::string available;
+        for (const auto& name : names) available += (available.empty() ? "" : ", ") + name;
+        throw Error(std::string(option) + ": no channel \"" + columns[axis] + "\" in " +
+                    args.log.input + " (channels: " + available + ")");
+      }
+      forced[columns[axis]] = {sensor, axis};
+    }
   };
   force_roles(args.gyro, Sensor::gyro, "--gyro");
   force_roles(args.accel, Sensor::accel, "--accel");
   const std::string gyro_unit = !args.gyro_unit.empty() ? args.gyro_unit : args.log.unit;
   const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : args.log.unit;
+  // A sensor unit is checked even when no column of that sensor is found: a wrong --accel-unit
+  // on a gyro-only log used to pass unnoticed.
+  auto expected_dimension = [&](bool gyro) {
+    Dimension expected = gyro ? dim::angular_rate : dim::acceleration;
+    if (kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
+    return expected;
+  };
+  if (!args.gyro_unit.empty()) parse_unit_as(args.gyro_unit, expected_dimension(true), "--gyro-unit");
+  if (!args.accel_unit.empty()) {
+    parse_unit_as(args.accel_unit, expected_dimension(false), "--accel-unit");
+  }
   std::vector<BoundedChannel> chosen;
   for (std::size_t c = 0; c < names.size(); ++c) {
     BoundedChannel channel;
@@ -197,9 +219,9 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
     if (channel.role) channel.input_unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
     if (!channel.input_unit.empty()) {
       const bool gyro = channel.role->sensor == Sensor::gyro;
-      Dimension expected = gyro ? dim::angular_rate : dim::acceleration;
-      if (kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
-      channel.to_si = parse_unit_as(channel.input_unit, expected, gyro ? "--gyro-unit" : "--accel-unit").factor;
+      channel.to_si = parse_unit_as(channel.input_unit, expected_dimension(gyro),
+                                    gyro ? "--gyro-unit" : "--accel-unit")
+                          .factor;
     }
     chosen.push_back(std::move(channel));
   }

@@ -83,3 +83,15 @@ err=$("$1" fit "$2" --time-column t --terms "" -o "$3" 2>&1 >/dev/null); rc=$?
 echo "exit $rc (expected 2): $err"
 [ "$rc" = 2 ] && [ ! -e "$3" ] && printf '%s' "$err" | grep -q -- "--terms: empty list: give terms"
 ]=] empty_terms $<TARGET_FILE:sigmatau_cli> ${audit_log} ${audit_out}/fit_empty_terms.txt)
+
+# analyze: a --gyro / --accel name that is no channel of the log was skipped silently (exit 0,
+# the sensor analysed with fewer axes), and --accel-unit / --gyro-unit were checked only when a
+# column of that sensor was found (a wrong unit on a gyro-only log passed unnoticed).
+sigmatau_cli_test(NAME cli_audit_analyze_unknown_gyro_column EXIT 2
+  STDERR "--gyro: no channel \"gz\" in .*white_2ch_10Hz.csv \\(channels: gx, gy\\)"
+  NO_FILE ${audit_out}/analyze_unknown_gyro
+  ARGS analyze ${audit_log} --time-column t --gyro gx,gy,gz -o ${audit_out}/analyze_unknown_gyro)
+sigmatau_cli_test(NAME cli_audit_analyze_accel_unit_without_accel EXIT 2
+  STDERR "--accel-unit: expected length/time\\^2 \\(e.g. m/s\\^2\\), found angle/time \\(deg/s\\)"
+  NO_FILE ${audit_out}/analyze_accel_unit
+  ARGS analyze ${audit_log} --time-column t --accel-unit deg/s -o ${audit_out}/analyze_accel_unit)
