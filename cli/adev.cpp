@@ -271,7 +271,13 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
       progress.update(reader.bytes_read(), reader.total_bytes());
     }
   } catch (const Error& e) {
-    if (!args.partial || samples == 0) throw;
+    if (!args.partial) throw;
+    if (samples == 0) {
+      // Said, not left to guess: --partial was asked for, but there is nothing to write.
+      throw Error(std::string(e.what()) +
+                  " (--partial: no results written: the error comes before the first complete "
+                  "block of samples)");
+    }
     partial_error = e.what();
   }
   progress.finish();

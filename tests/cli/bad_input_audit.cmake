@@ -95,3 +95,11 @@ sigmatau_cli_test(NAME cli_audit_analyze_accel_unit_without_accel EXIT 2
   STDERR "--accel-unit: expected length/time\\^2 \\(e.g. m/s\\^2\\), found angle/time \\(deg/s\\)"
   NO_FILE ${audit_out}/analyze_accel_unit
   ARGS analyze ${audit_log} --time-column t --accel-unit deg/s -o ${audit_out}/analyze_accel_unit)
+
+# adev --mode stream --partial with the error inside the first block of samples: nothing can be
+# written, and the message now says so instead of leaving the user to look for a partial file.
+sigmatau_cli_test(NAME cli_audit_adev_partial_nothing_read EXIT 2
+  STDERR ":3:2: expected a number, found \"abc\" \\(--partial: no results written: the error comes before the first complete block"
+  NO_FILE ${audit_out}/partial_nothing.txt
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/bad/non_numeric.csv --rate 100 --mode stream --partial
+       -o ${audit_out}/partial_nothing.txt)
