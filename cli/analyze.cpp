@@ -13,6 +13,7 @@
 #include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/resources.hpp"
 #include "sigmatau/simulate.hpp"
@@ -85,8 +86,16 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
                      "how the data sheet's noise density is read: two-sided (N = ND) or one-sided")
       ->capture_default_str();
   command.add_option("--bias-model", args.bias_model, "filter bias model: rw | gm")->capture_default_str();
+  // "report/" names the directory "report": with the slash kept, the directory was created first
+  // and then could not be moved into place ("cannot rename: Invalid argument").
   command.add_option("-o,--output", args.output, "output directory (written atomically)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(
+          [](std::string path) {
+            while (path.size() > 1 && path.back() == '/') path.pop_back();
+            return path;
+          },
+          "");
   command.add_flag("--force", args.force, "replace an existing output directory");
   command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
   command.add_flag("--dynamic", args.dynamic,
@@ -135,12 +144,14 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   return options;
 }
 
-/// Refuses an existing output directory without --force (before any reading).
+/// Refuses an existing output directory without --force, and one that could not be created
+/// (an unwritable parent), before any reading.
 void check_output(const ChainArguments& args) {
   std::error_code ec;
   if (std::filesystem::exists(args.output, ec) && !args.force) {
     throw Error(args.output + " exists; use --force to replace it");
   }
+  check_can_create_in(args.output);
 }
 
 /// Runs the chain (`analyze(options)`: in memory or bounded) and writes the output directory.
@@ -283,6 +294,8 @@ void run_analyze_bounded(const AnalyzeArguments& args) {
 }
 
 void run_analyze(const AnalyzeArguments& args) {
+  // Before reading: the in-memory path used to read the whole log before this check.
+  check_output(args.chain);
   if (needs_bounded(args)) {
     run_analyze_bounded(args);
     return;
@@ -313,6 +326,7 @@ void run_demo(const DemoArguments& args) {
   if (!(args.hours > 0) || !(args.rate_hz > 0) || !(args.scale > 0)) {
     throw Error("--hours, --rate and --scale must be > 0");
   }
+  check_output(args.chain);  // before the simulation
   SimulationConfig config;
   config.rate_hz = args.rate_hz;
   config.samples = static_cast<std::int64_t>(std::llround(args.hours * 3600 * args.rate_hz));

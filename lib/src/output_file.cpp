@@ -67,6 +67,27 @@ void remove_pending_temporaries() noexcept {
   }
 }
 
+void check_can_create_in(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto up = [](const std::filesystem::path& p) {
+    return p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+  };
+  std::filesystem::path directory = up(path);
+  while (!std::filesystem::exists(directory, ec) && directory != "." &&
+         directory != directory.root_path()) {
+    directory = up(directory);
+  }
+  if (!std::filesystem::exists(directory, ec)) return;  // left to the write to report
+  if (!std::filesystem::is_directory(directory, ec)) {
+    // The wording of create_directories' own failure, which this only brings forward.
+    throw Error("cannot create directory " + directory.string() + ": Not a directory");
+  }
+  if (::access(directory.c_str(), W_OK | X_OK) != 0) {
+    throw Error("cannot write " + path.string() + ": " + errno_text() + " (directory " +
+                directory.string() + ")");
+  }
+}
+
 void check_can_write(const std::filesystem::path& path, bool overwrite) {
   std::error_code ec;
   if (!overwrite && std::filesystem::exists(path, ec)) {
@@ -75,6 +96,7 @@ void check_can_write(const std::filesystem::path& path, bool overwrite) {
   if (std::filesystem::is_directory(path, ec)) {
     throw Error(path.string() + " is a directory; expected a file name");
   }
+  check_can_create_in(path);
 }
 
 AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)

@@ -103,3 +103,21 @@ sigmatau_cli_test(NAME cli_audit_adev_partial_nothing_read EXIT 2
   NO_FILE ${audit_out}/partial_nothing.txt
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/bad/non_numeric.csv --rate 100 --mode stream --partial
        -o ${audit_out}/partial_nothing.txt)
+
+# An output that cannot be created was found only when writing, after the whole run (minutes on a
+# long log). check_can_write now looks at the nearest existing directory first: the bad log here
+# proves the order (before, its read error came first; now the output's error does, at once).
+file(WRITE ${audit_out}/plain_file "in the way\n")
+sigmatau_cli_test(NAME cli_audit_output_under_a_file_fails_early EXIT 2
+  STDERR "cannot create directory .*cli_audit/plain_file: Not a directory"
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/bad/non_numeric.csv --rate 100
+       -o ${audit_out}/plain_file/adev.txt)
+sigmatau_cli_test(NAME cli_audit_analyze_output_under_a_file_fails_early EXIT 2
+  STDERR "cannot create directory .*cli_audit/plain_file: Not a directory"
+  ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/bad/non_numeric.csv --rate 100
+       -o ${audit_out}/plain_file/report)
+# analyze -o DIR/ (a trailing slash, as shell completion types it) created DIR and then could
+# not move the finished report into place: "cannot rename: Invalid argument", exit 2.
+sigmatau_cli_test(NAME cli_audit_analyze_output_trailing_slash EXIT 0
+  STDOUT "wrote .*cli_audit/slash_report/ \\("
+  ARGS analyze ${audit_log} --time-column t -o ${audit_out}/slash_report/ --force)

@@ -16,8 +16,15 @@ namespace sigmatau {
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,
                            bool overwrite);
 
-/// Throws the same "exists" Error as write_file_atomically, early, before long work starts.
+/// Throws the same "exists" Error as write_file_atomically, early, before long work starts; and
+/// check_can_create_in's Error when the file could not be created there.
 void check_can_write(const std::filesystem::path& path, bool overwrite);
+
+/// Throws Error when nothing could be created at `path`: its nearest existing ancestor D is not
+/// writable and searchable ("cannot write PATH: <reason> (directory D)") or is not a directory
+/// ("cannot create directory D: Not a directory"). Missing directories in between are fine
+/// (they are created). Called early, so that a run does not fail only after its long work.
+void check_can_create_in(const std::filesystem::path& path);
 
 /// Unlinks the temporary file of every AtomicOutputFile that is open and not yet committed, and
 /// nothing else (the outputs themselves are never touched). Uses only async-signal-safe calls,
