@@ -289,6 +289,31 @@ LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
   return out;
 }
 
+/// The log-reading options given on the command line (those not at their defaults): a saved
+/// adev result carries its own rate, units and channels, so these would be silently ignored.
+std::string log_options_given(const LogArguments& a) {
+  std::string given;
+  auto note = [&](bool set, const char* option) {
+    if (set) given += (given.empty() ? "" : ", ") + std::string(option);
+  };
+  note(!a.columns.empty(), "--columns");
+  note(!a.time_column.empty(), "--time-column");
+  note(a.time_unit != "s", "--time-unit");
+  note(a.rate_hz.has_value(), "--rate");
+  note(a.kind != "rate", "--kind");
+  note(!a.unit.empty(), "--unit");
+  note(!a.binary.empty(), "--binary");
+  note(a.channels != 0, "--channels");
+  note(a.big_endian, "--big-endian");
+  note(a.skip_bytes != 0, "--skip-bytes");
+  note(a.gaps != "error", "--gaps");
+  note(a.nonfinite != "error", "--nonfinite");
+  note(!a.topic.empty(), "--topic");
+  note(!a.stamp.empty(), "--stamp");
+  note(a.reorder_window.has_value(), "--reorder-window");
+  return given;
+}
+
 void run_fit(const FitArguments& args) {
   FitOptions options;
   options.method = parse_fit_method(args.method);
@@ -307,7 +332,12 @@ void run_fit(const FitArguments& args) {
     std::ifstream in(args.log.input, std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
-    for (const auto& saved : read_adev_json(text.str(), args.log.input)) {
+    const auto saved_curves = read_adev_json(text.str(), args.log.input);
+    if (const std::string given = log_options_given(args.log); !given.empty()) {
+      throw Error(args.log.input + " is a saved adev result (its rate, units and channels are in "
+                  "it): " + given + " would be ignored; leave them out, or fit the log itself");
+    }
+    for (const auto& saved : saved_curves) {
       Channel c;
       c.name = saved.channel;
       c.sensor = sensor_of(saved.channel, saved.sensor);

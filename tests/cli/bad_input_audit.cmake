@@ -121,3 +121,18 @@ sigmatau_cli_test(NAME cli_audit_analyze_output_under_a_file_fails_early EXIT 2
 sigmatau_cli_test(NAME cli_audit_analyze_output_trailing_slash EXIT 0
   STDOUT "wrote .*cli_audit/slash_report/ \\("
   ARGS analyze ${audit_log} --time-column t -o ${audit_out}/slash_report/ --force)
+
+# fit on a saved adev result ignored the log options (--rate, --unit, --columns ...) silently:
+# the result carries its own rate, units and channels. Now a usage error naming them.
+add_test(NAME cli_audit_fit_saved_adev_fresh COMMAND ${CMAKE_COMMAND} -E rm -f ${audit_out}/adev_saved.json)
+sigmatau_cli_test(NAME cli_audit_fit_saved_adev_make EXIT 0
+  ARGS adev ${audit_log} --time-column t --unit deg/s --format json -o ${audit_out}/adev_saved.json)
+set_tests_properties(cli_audit_fit_saved_adev_make PROPERTIES DEPENDS cli_audit_fit_saved_adev_fresh)
+sigmatau_cli_test(NAME cli_audit_fit_saved_adev_with_log_options EXIT 2
+  STDERR "adev_saved.json is a saved adev result .*: --rate, --unit would be ignored"
+  NO_FILE ${audit_out}/fit_saved_options.txt
+  ARGS fit ${audit_out}/adev_saved.json --rate 5 --unit deg/s -o ${audit_out}/fit_saved_options.txt)
+sigmatau_cli_test(NAME cli_audit_fit_saved_adev_without_options EXIT 0 STDOUT "gx  joint  model "
+  ARGS fit ${audit_out}/adev_saved.json)
+set_tests_properties(cli_audit_fit_saved_adev_with_log_options
+  cli_audit_fit_saved_adev_without_options PROPERTIES DEPENDS cli_audit_fit_saved_adev_make)
