@@ -81,11 +81,13 @@ ColumnPlan plan_columns(const CalibrateArguments& a, const std::vector<std::stri
     for (const auto& n : gyro_names)
       plan.column.push_back(find_column(channel_names, a.log.input, n, "--gyro"));
   }
+  // The temperature unit is checked whether or not the log has a temperature column: a wrong
+  // --temp-unit is a mistake either way.
+  parse_unit_as(a.temp_unit, dim::temperature, "--temp-unit");
   const std::string temp = a.temp_column.empty() ? "temp" : a.temp_column;
   if (!a.temp_column.empty() || has(temp)) {
     plan.temperature = true;
     plan.column.push_back(find_column(channel_names, a.log.input, temp, "--temp-column"));
-    convert(0.0, a.temp_unit, "K");  // throws the unit error, as converting each value would
     plan.temp_unit = parse_unit(a.temp_unit);
     plan.kelvin = parse_unit("K");
   }
@@ -223,7 +225,8 @@ void add_calibrate_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-orientations", args->min_orientations,
                       "distinct orientations required")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   command->add_option("--ci", args->confidence, "two-sided confidence level of the intervals")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | json")->capture_default_str();

@@ -76,3 +76,14 @@ sigmatau_cli_test(NAME cli_calibrate_one_position_sim EXIT 0 WORKING_DIRECTORY $
   ARGS simulate --model "N=0.005 deg/s/sqrt(Hz)" --accel-model "N=100 ug/sqrt(Hz)" --rate 100
        --sensors gyro,accel --duration "60 s" --force -o static.csv)
 set_tests_properties(cli_calibrate_one_position PROPERTIES DEPENDS cli_calibrate_one_position_sim)
+# Options checked whether or not the log needs them (bad-input audit): a temperature unit that is
+# no temperature, on a log without a temperature column, and an orientation count below one, were
+# both accepted silently.
+sigmatau_cli_test(NAME cli_calibrate_temp_unit_without_column EXIT 2 WORKING_DIRECTORY ${cal_bounded_dir}
+  STDERR "--temp-unit: expected temperature \\(e\\.g\\. K\\), found length/time"
+  ARGS calibrate static.csv --time-column t --temp-unit m/s)
+sigmatau_cli_test(NAME cli_calibrate_min_orientations_range EXIT 2 WORKING_DIRECTORY ${cal_bounded_dir}
+  STDERR "--min-orientations: Value -1 not in range 1 to 1000"
+  ARGS calibrate static.csv --time-column t --min-orientations -1)
+set_tests_properties(cli_calibrate_temp_unit_without_column cli_calibrate_min_orientations_range
+                     PROPERTIES DEPENDS cli_calibrate_one_position_sim)
