@@ -59,6 +59,10 @@ const std::vector<Profile>& profiles() {
       // ramp a low prior (fit_select.hpp, kRampPriorPenalty).
       {"ramp_gyro", "MEMS gyro with a rate ramp (no K), 100 Hz, 2 h", Sensor::gyro, 100, 2,
        "N=0.15 deg/sqrt(h), B=3 deg/h, R=40 deg/h^2"},
+      // A small quantization (3.7 % of the AVAR at tau0): selection must still find Q although
+      // it gives quantization a prior (fit_select.hpp, kQuantizationPriorPenalty).
+      {"quantized_gyro", "MEMS gyro with a small quantization, 100 Hz, 2 h", Sensor::gyro, 100, 2,
+       "Q=0.1 arcsec, N=0.15 deg/sqrt(h), B=3 deg/h, K=15 deg/h/sqrt(h)"},
   };
   return p;
 }

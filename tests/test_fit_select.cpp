@@ -1,5 +1,6 @@
 // Model selection of the joint fit (lib/src/fit_select.cpp): the curve likelihood against the
-// exact chi-squared likelihood of one point, and the ramp's prior on exact curves.
+// exact chi-squared likelihood of one point, and the priors of the ramp and of quantization on
+// exact curves.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -109,5 +110,28 @@ TEST_CASE("a rate ramp is kept when the curve needs it and is otherwise a bound 
     o.terms = parse_fit_terms("N,B,R");
     const NoiseFit f = fit_noise(exact_curve(t), source, o);
     SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::rate_ramp).value, *t.rate_ramp, 1e-6);
+  }
+}
+
+TEST_CASE("quantization's prior keeps a Q that shows at the shortest taus and bounds one that does not") {
+  const CurveSource source{kTau0, kSamples + 1, 0};
+  NoiseTerms t;
+  t.white = 4e-4;             // AVAR at tau0: N^2 / tau0 = 1.6e-5
+  t.bias_instability = 3e-4;
+  SUBCASE("Q at 3.7 % of the AVAR at tau0 (the bench's quantized_gyro share): kept, exact") {
+    t.quantization = 4.4e-6;  // 3 Q^2 / tau0^2 = 5.8e-7
+    const NoiseFit f = fit_noise(exact_curve(t), source, FitOptions{});
+    CHECK(f.joint->model_terms == std::vector<NoiseTerm>{NoiseTerm::quantization, NoiseTerm::white,
+                                                         NoiseTerm::bias_instability});
+    // 1e-6: an exact curve, only rounding in the solve remains.
+    SIGMATAU_CHECK_REL(f.joint->parameter(NoiseTerm::quantization).value, *t.quantization, 1e-6);
+  }
+  SUBCASE("Q at 1e-6 of the AVAR at tau0: left out, bounded above the truth") {
+    t.quantization = 2.3e-8;
+    const NoiseFit f = fit_noise(exact_curve(t), source, FitOptions{});
+    const auto& q = f.joint->parameter(NoiseTerm::quantization);
+    INFO("model " << f.joint->model_terms.size() << " terms, Q bound " << q.upper_bound);
+    CHECK_FALSE(q.in_model);
+    CHECK(*t.quantization <= q.upper_bound);
   }
 }

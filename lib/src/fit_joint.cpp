@@ -15,7 +15,8 @@
 // (the other terms as stage 1 chose them), each model fitted with weights iterated under
 // itself and judged by an approximate likelihood of the curve (Wilson-Hilferty cube-root
 // marginals with the model's own EDFs, Gaussian copula with its correlations: curve_deviance)
-// + (terms) ln n. A ramp pays -2 ln 0.02 more in both (a 2 % prior: kRampPriorPenalty). BIC
+// + (terms) ln n. A ramp pays -2 ln 0.02 more in both (a 2 % prior: kRampPriorPenalty), a
+// quantization -2 ln 0.1 (kQuantizationPriorPenalty). BIC
 // rather than AIC: terms absent from the truth sit on the boundary theta = 0, where the gain
 // of adding one is chi-bar-squared (Self & Liang 1987); ln n (2.9 for an 18-point octave
 // curve) accepts such a term in ~4.4 % of curves, AIC's 2 in ~7.9 %.
@@ -53,8 +54,14 @@
 // Reported seeds 1-200 (bench/results_fit_accuracy.md), true set: 87.3 / 96.8 / 93.7 / 58.2 /
 // 83.5 % (before 72.3 / 99.8 / 92.0 / 58.2 / 90.3 %). MEMS there: K left out 5.7 %, Q added
 // 6.5 % (4.3 % on the exploration seeds; the chi-bar rate of ln n is 4.4 %), R 1 %.
-// What limits selection now: MEMS, K's evidence at the last three points (left out in ~6 %)
-// and Q's chi-bar false-positive rate (~4 %); weak flicker, B's floor shows only in the last
+// Then kept (lead, same exploration seeds): quantization's prior, -2 ln 0.1 added to every
+// model with Q (kQuantizationPriorPenalty): 89 -> 92 % MEMS, 95 -> 99 % accelerometer, tactical
+// unchanged (93 %); -2 ln 0.02 as for the ramp gave 92.7 / 98.7 %. A Q of 0.1 arcsec on the MEMS
+// gyro (3.7 % of the AVAR at tau0, bench profile quantized_gyro) is kept in every channel with
+// and without it: Q and N are told apart at the shortest taus with 1e5-1e6 EDF, so the prior
+// only removes BIC's chi-bar false positives (4.4 % -> 0.3 %).
+// What limits selection now: MEMS, K's evidence at the last three points (left out in ~6 %);
+// tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).
 //
 // Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance. Upper bounds of

@@ -2,8 +2,9 @@
 // measured, kept and rejected):
 //  1. Every subset of the candidates is fitted with one weight matrix, the largest model's,
 //     and the smallest chi2 + (terms) ln n (BIC) wins, a rate ramp paying kRampPriorPenalty
-//     more. Common weights judge every subset by the same variances, so no model can explain
-//     a point by its own larger variance; that choice between a flicker floor (B) and a rise
+//     more and a quantization kQuantizationPriorPenalty (fit_select.hpp says why). Common
+//     weights judge every subset by the same variances, so no model can explain a point by its
+//     own larger variance; that choice between a flicker floor (B) and a rise
 //     at the end (K, R) is the robust one where the end of the curve is all there is.
 //  2. When stage 1 found a flicker floor (B), the terms that show only above it at the end of
 //     the curve, K and R, are decided again: the four combinations of K and R with the other
@@ -52,9 +53,16 @@ Mask used_terms(const TermVector& theta) {
   return used;
 }
 
-/// Stage 1: BIC with the largest model's weights for every subset (+ the ramp's prior).
-Mask select_common_weights(const Design& d, Mask all, const CovarianceBasis& basis, double penalty) {
+/// The prior penalties of the terms in `used` (kRampPriorPenalty, kQuantizationPriorPenalty).
+double prior_penalty(Mask used) {
   const Mask ramp = 1u << term_index(NoiseTerm::rate_ramp);
+  const Mask quantization = 1u << term_index(NoiseTerm::quantization);
+  return ((used & ramp) ? kRampPriorPenalty : 0.0) +
+         ((used & quantization) ? kQuantizationPriorPenalty : 0.0);
+}
+
+/// Stage 1: BIC with the largest model's weights for every subset (+ the priors).
+Mask select_common_weights(const Design& d, Mask all, const CovarianceBasis& basis, double penalty) {
   const Iterated full = iterate(d, all, basis);
   double best = std::numeric_limits<double>::infinity();
   Mask model = all;
@@ -64,7 +72,7 @@ Mask select_common_weights(const Design& d, Mask all, const CovarianceBasis& bas
     const int k = count_positive(g.theta);
     if (k == 0) continue;
     const Mask used = used_terms(g.theta);
-    const double crit = g.chi2 + k * penalty + ((used & ramp) ? kRampPriorPenalty : 0.0);
+    const double crit = g.chi2 + k * penalty + prior_penalty(used);
     if (crit < best) {
       best = crit;
       model = used;
@@ -78,9 +86,8 @@ Mask select_common_weights(const Design& d, Mask all, const CovarianceBasis& bas
 double own_weights_criterion(const Design& d, Mask s, const CovarianceBasis& basis, double penalty) {
   const Iterated fit = iterate(d, s, basis);
   if (used_terms(fit.fit.theta) != s) return std::numeric_limits<double>::infinity();
-  const Mask ramp = 1u << term_index(NoiseTerm::rate_ramp);
   return curve_deviance(d, fit.fit.theta, basis) + count_positive(fit.fit.theta) * penalty +
-         ((s & ramp) ? kRampPriorPenalty : 0.0);
+         prior_penalty(s);
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 /// estimates across taus under the fitted model (oavar_covariance), iterated with the model.
 /// Candidate subsets of terms are compared by BIC (one weight matrix, the largest model's); when
 /// that finds B, K and R are decided again with each model's own weights by an approximate
-/// likelihood of the curve (cube-root chi-squared marginals); a ramp has a 2 % prior;
+/// likelihood of the curve (cube-root chi-squared marginals); a ramp has a 2 % prior and a
+/// quantization a 10 % prior;
 /// terms not kept are reported as one-sided upper bounds from the variance under the bound.
 ///
 /// References:
