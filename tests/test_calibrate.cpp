@@ -16,6 +16,7 @@
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/simulate.hpp"
+#include "calibration_input.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -45,27 +46,7 @@ Truth6 mems_truth() {
   return t;
 }
 
-CalibrationInput simulate_input(const SimulationConfig& c) {
-  Simulator sim(c);
-  const int nch = sim.channels();
-  const auto names = sim.channel_names();
-  std::vector<double> block(static_cast<std::size_t>(4096 * nch));
-  CalibrationInput in;
-  in.rate_hz = c.rate_hz;
-  in.increments = c.kind == OutputKind::increment;
-  for (;;) {
-    const std::int64_t rows = sim.next(block, 4096);
-    if (rows == 0) break;
-    for (std::int64_t r = 0; r < rows; ++r)
-      for (int ch = 0; ch < nch; ++ch) {
-        const double v = block[static_cast<std::size_t>(r * nch + ch)];
-        const std::string& n = names[static_cast<std::size_t>(ch)];
-        if (n == "temp") in.temperature_k.push_back(v);
-        else (n[0] == 'g' ? in.gyro : in.accel)[static_cast<std::size_t>(n[1] - 'x')].push_back(v);
-      }
-  }
-  return in;
-}
+CalibrationInput simulate_input(const SimulationConfig& c) { return test::simulate_calibration_input(c); }
 
 SimulationConfig schedule_config(const Truth6& t, int positions, double dwell_s, std::uint64_t seed,
                                  double latitude = 45 * kDeg) {

@@ -11,6 +11,7 @@
 #include "sigmatau/calibrate.hpp"
 #include "sigmatau/calibrate_log.hpp"
 #include "sigmatau/simulate.hpp"
+#include "calibration_input.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -46,23 +47,7 @@ SimulationConfig config(int positions, double dwell_s, double rate_hz, OutputKin
 /// The simulated log as a CalibrationInput, with a temperature column rising 0.5 mK per sample
 /// when `temperature` (the values only need to be valid and to be carried along).
 CalibrationInput simulate(const SimulationConfig& c, bool temperature) {
-  Simulator sim(c);
-  const int nch = sim.channels();
-  const auto names = sim.channel_names();
-  std::vector<double> block(static_cast<std::size_t>(4096 * nch));
-  CalibrationInput in;
-  in.rate_hz = c.rate_hz;
-  in.increments = c.kind == OutputKind::increment;
-  for (;;) {
-    const std::int64_t rows = sim.next(block, 4096);
-    if (rows == 0) break;
-    for (std::int64_t r = 0; r < rows; ++r)
-      for (int ch = 0; ch < nch; ++ch) {
-        const double v = block[static_cast<std::size_t>(r * nch + ch)];
-        const std::string& n = names[static_cast<std::size_t>(ch)];
-        (n[0] == 'g' ? in.gyro : in.accel)[static_cast<std::size_t>(n[1] - 'x')].push_back(v);
-      }
-  }
+  CalibrationInput in = test::simulate_calibration_input(c);
   if (temperature)
     for (std::size_t i = 0; i < in.accel[0].size(); ++i)
       in.temperature_k.push_back(290 + 5e-4 * static_cast<double>(i));
