@@ -11,6 +11,7 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/simulate.hpp"
+#include "exact_curve.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -24,18 +25,7 @@ constexpr std::int64_t kSamples = std::int64_t{1} << 16;
 
 /// An exact theoretical OADEV curve (sampled_avar) at the octave factors of a log of kSamples.
 AllanCurve exact_curve(const NoiseTerms& truth, std::int64_t flicker_taps = 0) {
-  AllanCurve curve;
-  curve.statistic = Statistic::oadev;
-  const std::int64_t n = kSamples + 1;
-  for (const auto m : averaging_factors(TauSpec{}, Statistic::oadev, n, kTau0)) {
-    CurvePoint p;
-    p.value.m = m;
-    p.value.tau_s = static_cast<double>(m) * kTau0;
-    p.value.dev = std::sqrt(sampled_avar(truth, m, Sampling{kTau0, flicker_taps, false}));
-    p.confidence.edf = static_cast<double>(n) / static_cast<double>(m);
-    curve.points.push_back(p);
-  }
-  return curve;
+  return test::exact_oadev_curve(truth, kSamples, kTau0, flicker_taps);
 }
 
 /// Rate samples of one axis of a simulated gyro.

@@ -12,6 +12,7 @@
 #include "sigmatau/fit.hpp"
 #include "sigmatau/noise_model.hpp"
 #include "sigmatau/taus.hpp"
+#include "exact_curve.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -22,20 +23,7 @@ constexpr double kTau0 = 0.01;  // 100 Hz
 constexpr std::int64_t kSamples = std::int64_t{1} << 16;
 
 /// An exact theoretical OADEV curve at the octave factors of a log of kSamples.
-AllanCurve exact_curve(const NoiseTerms& truth) {
-  AllanCurve curve;
-  curve.statistic = Statistic::oadev;
-  const std::int64_t n = kSamples + 1;
-  for (const auto m : averaging_factors(TauSpec{}, Statistic::oadev, n, kTau0)) {
-    CurvePoint p;
-    p.value.m = m;
-    p.value.tau_s = static_cast<double>(m) * kTau0;
-    p.value.dev = std::sqrt(sampled_avar(truth, m, Sampling{kTau0, 0, false}));
-    p.confidence.edf = static_cast<double>(n) / static_cast<double>(m);
-    curve.points.push_back(p);
-  }
-  return curve;
-}
+AllanCurve exact_curve(const NoiseTerms& truth) { return test::exact_oadev_curve(truth, kSamples, kTau0); }
 
 /// -2 ln of the chi-squared density of v = mu chi2_nu / nu, less the part that depends on v only.
 double chi_squared_deviance(double v, double mu, double nu) { return nu * v / mu + nu * std::log(mu); }
