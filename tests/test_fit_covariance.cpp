@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../../lib/src/fit_covariance_lags.hpp"  // internal interface under test
@@ -146,6 +147,28 @@ TEST_CASE(
   }
 }
 
+namespace {
+
+/// The flicker correlation's second difference over (m_a, m_b) at `lag` summed directly from
+/// flicker_phase_covariance, with the sum of the magnitudes of its nine terms (its rounding
+/// scale): the reference for evaluate()'s series.
+std::pair<double, double> direct_second_difference(double lag, std::int64_t ma, std::int64_t mb) {
+  double direct = 0, magnitude = 0;
+  const double g[3] = {1, -2, 1};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double v = g[i] * g[j] *
+                       flicker_phase_covariance(lag + j * static_cast<double>(mb) -
+                                                i * static_cast<double>(ma));
+      direct += v;
+      magnitude += std::abs(v);
+    }
+  }
+  return {direct, magnitude};
+}
+
+}  // namespace
+
 TEST_CASE("the flicker far-field series joins the direct sum of generalized covariances") {
   // evaluate() switches to the series at |u| = 6 (m_a + m_b). Just beyond it the direct sum of
   // the nine G(d) ~ d^2 ln d loses eps x sum |g g G| to cancellation: that is the tolerance.
@@ -157,17 +180,7 @@ TEST_CASE("the flicker far-field series joins the direct sum of generalized cova
       const double u = std::ceil(factor * static_cast<double>(ma + mb));
       const double lag = u + static_cast<double>(ma - mb);
       corr.evaluate(lag, c);
-      double direct = 0, magnitude = 0;
-      const double g[3] = {1, -2, 1};
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          const double v = g[i] * g[j] *
-                           flicker_phase_covariance(lag + j * static_cast<double>(mb) -
-                                                    i * static_cast<double>(ma));
-          direct += v;
-          magnitude += std::abs(v);
-        }
-      }
+      const auto [direct, magnitude] = direct_second_difference(lag, ma, mb);
       const double mm = static_cast<double>(ma) * static_cast<double>(mb);
       INFO("m_a = " << ma << " m_b = " << mb << " u = " << u << " series " << c[2] << " direct "
                     << direct / mm);
@@ -189,17 +202,7 @@ TEST_CASE("the flicker inner series joins the direct second difference for unequ
     for (std::int64_t u = -span; u <= span; u += std::max<std::int64_t>(1, span / 997)) {
       const double lag = static_cast<double>(u + ma - mb);
       corr.evaluate(lag, c);
-      double direct = 0, magnitude = 0;
-      const double g[3] = {1, -2, 1};
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          const double v = g[i] * g[j] *
-                           flicker_phase_covariance(lag + j * static_cast<double>(mb) -
-                                                    i * static_cast<double>(ma));
-          direct += v;
-          magnitude += std::abs(v);
-        }
-      }
+      const auto [direct, magnitude] = direct_second_difference(lag, ma, mb);
       const double mm = static_cast<double>(ma) * static_cast<double>(mb);
       const double err = std::abs(c[2] - direct / mm);
       worst = std::max(worst, err / (64 * kEps * magnitude / mm + 1e-12));
