@@ -134,9 +134,9 @@ inline constexpr int kMinFitPoints = 4;
 /// Exact covariance of the overlapping AVAR estimates at averaging factors `m` for a Gaussian
 /// process with the given terms sampled at tau0 (N phase points), in (rate unit)^4:
 /// Cov(s2_a, s2_b) = (1 / (4 n_a n_b)) sum_{k,l} [2 c_ab(l-k)^2 + 4 mu_a mu_b c_ab(l-k)],
-/// c_ab the covariance of the second differences (from the terms' PSDs by FFT), mu the ramp's
-/// mean difference, n = N - 2m. Q, N, B (untruncated 1/f), K, R, Gauss-Markov are modelled;
-/// a sinusoid is ignored. Quantization is the one non-Gaussian term: its phase error is a
+/// c_ab the covariance of the second differences (closed form per term, summed over every lag
+/// by quadrature), mu the ramp's mean difference, n = N - 2m. Q, N, B (untruncated 1/f), K, R,
+/// Gauss-Markov are modelled; a sinusoid is ignored. Quantization is the one non-Gaussian term: its phase error is a
 /// uniform rounding error, whose fourth cumulant (-1.2 Q^4) adds a term to the Q-Q part. Throws Error when an m is < 1 or N - 2m < 1.
 Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::int64_t> m,
                                  std::int64_t n_phase_points, double tau0_s);
