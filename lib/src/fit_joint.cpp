@@ -51,15 +51,17 @@
 //    weak flicker N,K for N,B 15 %); ln v as a scaled chi-squared with the largest model's
 //    EDFs (MEMS 77 %, tactical 93 %, accelerometer 89 %); with each subset's own EDFs and
 //    ln det C 77 / 64 % (MEMS / weak flicker, R a candidate); ~4 taus per decade 80 / 63 %.
-// Reported seeds 1-200 (bench/results_fit_accuracy.md), true set: 87.3 / 96.8 / 93.7 / 58.2 /
-// 83.5 % (before 72.3 / 99.8 / 92.0 / 58.2 / 90.3 %). MEMS there: K left out 5.7 %, Q added
-// 6.5 % (4.3 % on the exploration seeds; the chi-bar rate of ln n is 4.4 %), R 1 %.
+// Reported seeds 1-200 (bench/results_fit_accuracy.md), two stages with the ramp's prior and
+// the FFT covariance: 87.3 / 96.8 / 93.7 / 58.2 / 83.5 % (before 72.3 / 99.8 / 92.0 / 58.2 /
+// 90.3 %); MEMS there: K left out 5.7 %, Q added 6.5 % (4.3 % on the exploration seeds).
 // Then kept (lead, same exploration seeds): quantization's prior, -2 ln 0.1 added to every
 // model with Q (kQuantizationPriorPenalty): 89 -> 92 % MEMS, 95 -> 99 % accelerometer, tactical
 // unchanged (93 %); -2 ln 0.02 as for the ramp gave 92.7 / 98.7 %. A Q of 0.1 arcsec on the MEMS
 // gyro (3.7 % of the AVAR at tau0, bench profile quantized_gyro) is kept in every channel with
 // and without it: Q and N are told apart at the shortest taus with 1e5-1e6 EDF, so the prior
-// only removes BIC's chi-bar false positives (4.4 % -> 0.3 %).
+// only removes BIC's chi-bar false positives (4.4 % -> 0.3 %). Reported seeds 1-200 with it and
+// the exact (FFT-free) covariance: 92.8 / 96.8 / 99.2 / 61.5 / 89.2 %, quantized gyro 93.8 %;
+// MEMS: K left out 6.5 % (its median error 15.3 %), Q added 0.7 %.
 // What limits selection now: MEMS, K's evidence at the last three points (left out in ~6 %);
 // tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).

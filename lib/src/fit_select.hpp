@@ -55,8 +55,8 @@ int count_positive(const TermVector& theta);
 /// three octave points of a 2 h log (EDF 23, 10, 4) its AVAR (~ tau^2) is hard to tell from a
 /// random walk's (~ tau): without the prior R took K's place in 12 % of the MEMS gyro's
 /// channels (bench_fit_accuracy, exploration seeds). A ramp that crosses the flicker floor
-/// near 250 s (bench profile ramp_gyro) is still found in 84 % of channels (seeds 1-200; 87 %
-/// on the exploration seeds), K in its place in 11 % (the former criterion, no prior: 90 %).
+/// near 250 s (bench profile ramp_gyro) is still found in 89 % of channels (seeds 1-200; 87 %
+/// on the exploration seeds), K in its place in 10 %.
 inline constexpr double kRampPriorPenalty = 7.824046010856292;
 
 /// Added to the criterion of every model with quantization (Q): -2 ln 0.1, a prior probability
