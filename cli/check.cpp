@@ -2,13 +2,8 @@
 // Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line).
 #include <nlohmann/json.hpp>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <sstream>
 
 #include "sigmatau/compliance.hpp"
@@ -19,23 +14,6 @@
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
-
-std::string read_text_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw Error(path + ": cannot read: Is a directory (expected a JSON file)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::string text;
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) throw Error(path + ": cannot read: " + std::strerror(errno));
-  return text;
-}
-
 namespace {
 
 struct CheckArguments {
@@ -46,7 +24,6 @@ struct CheckArguments {
   std::string output;
   bool force = false;
 };
-
 
 /// A value in the printed unit when it converts, else in SI.
 std::string in_printed_unit(double value_si, const std::string& unit) {

@@ -2,8 +2,6 @@
 // rate, exported for a filter project, with the arithmetic on request (--explain).
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <iostream>
 
 #include "sigmatau/convert.hpp"

@@ -31,6 +31,8 @@ struct FitArguments {
   bool force = false;
   unsigned threads = 0;
   std::string memory = "4GiB";
+  /// The log options given on the command line (a saved adev result refuses them).
+  std::string log_options_given;
 };
 
 /// Bytes read from the start of INPUT to tell a saved JSON result from a log.
@@ -289,31 +291,6 @@ LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
   return out;
 }
 
-/// The log-reading options given on the command line (those not at their defaults): a saved
-/// adev result carries its own rate, units and channels, so these would be silently ignored.
-std::string log_options_given(const LogArguments& a) {
-  std::string given;
-  auto note = [&](bool set, const char* option) {
-    if (set) given += (given.empty() ? "" : ", ") + std::string(option);
-  };
-  note(!a.columns.empty(), "--columns");
-  note(!a.time_column.empty(), "--time-column");
-  note(a.time_unit != "s", "--time-unit");
-  note(a.rate_hz.has_value(), "--rate");
-  note(a.kind != "rate", "--kind");
-  note(!a.unit.empty(), "--unit");
-  note(!a.binary.empty(), "--binary");
-  note(a.channels != 0, "--channels");
-  note(a.big_endian, "--big-endian");
-  note(a.skip_bytes != 0, "--skip-bytes");
-  note(a.gaps != "error", "--gaps");
-  note(a.nonfinite != "error", "--nonfinite");
-  note(!a.topic.empty(), "--topic");
-  note(!a.stamp.empty(), "--stamp");
-  note(a.reorder_window.has_value(), "--reorder-window");
-  return given;
-}
-
 void run_fit(const FitArguments& args) {
   FitOptions options;
   options.method = parse_fit_method(args.method);
@@ -329,13 +306,11 @@ void run_fit(const FitArguments& args) {
 
   std::vector<Channel> channels;
   if (looks_like_json(sniff(args.log.input))) {
-    std::ifstream in(args.log.input, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    const auto saved_curves = read_adev_json(text.str(), args.log.input);
-    if (const std::string given = log_options_given(args.log); !given.empty()) {
+    const auto saved_curves = read_adev_json(read_text_file(args.log.input), args.log.input);
+    if (!args.log_options_given.empty()) {
       throw Error(args.log.input + " is a saved adev result (its rate, units and channels are in "
-                  "it): " + given + " would be ignored; leave them out, or fit the log itself");
+                  "it): " + args.log_options_given +
+                  " would be ignored; leave them out, or fit the log itself");
     }
     for (const auto& saved : saved_curves) {
       Channel c;
@@ -397,7 +372,7 @@ void add_fit_command(CLI::App& app) {
       "fit", "Noise terms (Q, N, B, K, R) with confidence intervals, from a log or a saved "
              "`adev --format json` result: a joint fit that keeps only the terms the data "
              "supports, and/or the IEEE slope read-outs");
-  add_log_options(*command, args->log);
+  const std::vector<CLI::Option*> log_options = add_log_options(*command, args->log);
   command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
   // An explicitly empty --terms used to mean the BIC choice silently; it is an error like --stat "".
   command->add_option("--terms", args->terms,
@@ -418,7 +393,10 @@ void add_fit_command(CLI::App& app) {
                       "memory for the exact OADEV curves, e.g. 1GiB: larger files are computed "
                       "out of core (the same numbers, as `adev` does)")
       ->capture_default_str();
-  command->callback([args] { run_fit(*args); });
+  command->callback([args, log_options] {
+    args->log_options_given = given_option_names(log_options);
+    run_fit(*args);
+  });
 }
 
 }  // namespace sigmatau::cli

@@ -27,8 +27,9 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
 
 bool stderr_is_tty() { return ::isatty(STDERR_FILENO) == 1; }
 
-void add_log_options(CLI::App& command, LogArguments& args) {
-  command.add_option("INPUT", args.input,
+std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args) {
+  const std::size_t options_before = command.get_options().size();
+  const CLI::Option* input = command.add_option("INPUT", args.input,
                      "log file (CSV/TSV/whitespace text, .gz, raw binary), - for stdin, or a ROS "
                      "bag (ROS 1 .bag, ROS 2 .mcap or .db3, a rosbag2 folder): its "
                      "sensor_msgs/Imu messages as channels gx gy gz [rad/s] ax ay az [m/s^2]")
@@ -69,6 +70,20 @@ void add_log_options(CLI::App& command, LogArguments& args) {
   command.add_option("--reorder-window", args.reorder_window,
                      "ROS bag: out-of-order stamps are sorted within this many messages "
                      "(default 10000); a message later than that is an error");
+  std::vector<CLI::Option*> added;
+  const std::vector<CLI::Option*> all = command.get_options();
+  for (std::size_t i = options_before; i < all.size(); ++i) {
+    if (all[i] != input) added.push_back(all[i]);
+  }
+  return added;
+}
+
+std::string given_option_names(const std::vector<CLI::Option*>& options) {
+  std::string names;
+  for (const CLI::Option* option : options) {
+    if (option->count() > 0) names += (names.empty() ? "" : ", ") + option->get_name();
+  }
+  return names;
 }
 
 LogOptions log_options_from(const LogArguments& args) {

@@ -33,8 +33,13 @@ struct LogArguments {
   std::optional<std::int64_t> reorder_window; // [messages]; unset: LogOptions' default
 };
 
-/// Adds INPUT and the log options to `command`.
-void add_log_options(CLI::App& command, LogArguments& args);
+/// Adds INPUT and the log options to `command`; returns the log options (all but INPUT), so a
+/// verb can tell which were given (given_option_names).
+std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args);
+
+/// The names of the options in `options` given on the command line, comma-separated in the
+/// order of `options` ("" when none was given).
+std::string given_option_names(const std::vector<CLI::Option*>& options);
 
 /// A log read into memory and converted to SI (when --unit was given).
 struct LoadedChannels {
