@@ -151,16 +151,15 @@ Gls gls(const Design& d, Mask mask, const Eigen::MatrixXd& sigma) {
     out.theta(out.columns[static_cast<std::size_t>(c)]) = t(c);
   }
   out.chi2 = (vw - out.whitened * t).squaredNorm();
-  for (Eigen::Index j = 0; j < llt.matrixL().rows(); ++j) out.log_det += 2 * std::log(llt.matrixL()(j, j));
   return out;
 }
 
-Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis, int max_iterations) {
+Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis) {
   // Start: relative weights (each v_j known to the same fraction).
   Eigen::MatrixXd sigma = d.v.array().square().matrix().asDiagonal();
   Gls fit = gls(d, mask, sigma);
   int it = 0;
-  for (; it < max_iterations; ++it) {
+  for (; it < kMaxWeightIterations; ++it) {
     sigma = model_covariance(basis, fit.theta, d.v);
     Gls next = gls(d, mask, sigma);
     double change = 0;

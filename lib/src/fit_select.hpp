@@ -26,7 +26,6 @@ struct Design {
 struct Gls {
   TermVector theta = TermVector::Zero();
   double chi2 = 0;           ///< (v - A theta)^T Sigma^-1 (v - A theta)
-  double log_det = 0;        ///< ln det Sigma of the weights used
   Eigen::MatrixXd whitened;  ///< L^-1 A restricted to the mask's columns
   std::vector<int> columns;  ///< term indices of the mask, ascending
 };
@@ -44,9 +43,8 @@ Eigen::MatrixXd model_covariance(const CovarianceBasis& basis, const TermVector&
 /// Non-negative GLS of the terms in `mask` weighted by sigma^-1.
 Gls gls(const Design& d, Mask mask, const Eigen::MatrixXd& sigma);
 /// GLS iterated with its own model's covariance, from relative weights, at most
-/// `max_iterations` weight updates.
-Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis,
-                 int max_iterations = kMaxWeightIterations);
+/// kMaxWeightIterations weight updates.
+Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis);
 /// Number of terms with theta_k > 0.
 int count_positive(const TermVector& theta);
 
