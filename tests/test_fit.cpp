@@ -308,6 +308,27 @@ TEST_CASE("slope read-outs of an exact white + random-walk curve") {
   CHECK_FALSE(f.slopes->parameter(NoiseTerm::quantization).in_model);
 }
 
+TEST_CASE("a slope line is read over one run of points: a stray identification is not on it") {
+  NoiseTerms t;
+  t.white = 1e-3;
+  t.rate_random_walk = 1e-3;
+  AllanCurve curve = exact_curve(t);
+  // As in the clean case above (white below crossing/8, random walk above 8 x crossing), but
+  // the third point (tau = 0.04 s, white noise 5000x the random walk's AVAR) called random walk,
+  // as noise identification can call a point of another region.
+  const double crossing = 3.0;
+  for (auto& p : curve.points) p.confidence.noise.alpha = p.value.tau_s < crossing / 8 ? 0 : (p.value.tau_s > crossing * 8 ? -2 : -1);
+  REQUIRE(curve.points.size() > 3);
+  curve.points[2].confidence.noise.alpha = -2;
+  FitOptions o;
+  o.method = FitMethod::slopes;
+  const NoiseFit f = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
+  // K from its own run at the end: within 7 % as above. Read with the stray point (the one with
+  // by far the largest EDF), K came out 43x too large.
+  SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::rate_random_walk).value, 1e-3, 0.07);
+  SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::white).value, 1e-3, 0.07);
+}
+
 TEST_CASE("bad inputs are clear errors") {
   const CurveSource source{kTau0, kSamples + 1, 0};
   SUBCASE("too few taus") {

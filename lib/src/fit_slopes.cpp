@@ -3,15 +3,20 @@
 // Glossary:
 //   dev_j, tau_j, nu_j   OADEV point, its tau [s] and EDF;  alpha_j its identified noise
 //   s, tau_r, c          the term's ADEV slope, read-off tau and coefficient (noise_model read_off)
-//   J                    the points where the term's slope holds: alpha 2 or 1 (Q, ADEV slope
-//                        -1), 0 (N, -1/2), -1 (B, 0), -2 (K, +1/2); R (+1): alpha -2 points
-//                        whose local ADEV slope exceeds kRampSlope
-// Line with fixed slope in log-log (AVLR, THEORY.md section 7):
-//   log(c value) = mean_J [log dev_j - s log(tau_j / tau_r)]
+//   J                    the points where the term's slope holds: the longest run of
+//                        consecutive points identified alpha 2 or 1 (Q, ADEV slope -1), 0 (N,
+//                        -1/2), -1 (B, 0), -2 (K, +1/2); R (+1): alpha -2 points whose local
+//                        ADEV slope exceeds kRampSlope
+// A slope holds over a range of tau, so J is one run: noise identification at a low-EDF point
+// can call a single point of another region white or random walk, and such a stray point far
+// from the term's region (a flicker-floor point 600 s out read on the -1/2 line) moved N by
+// +50-65 % in about half the MEMS channels (bench_fit_accuracy, exploration seeds 1001-1030).
+// Line with fixed slope in log-log (AVLR, THEORY.md section 7), each point weighted by its EDF
+// (var(log dev_j) ~ 1/(2 nu_j)):
+//   log(c value) = sum_J w_j [log dev_j - s log(tau_j / tau_r)],  w_j = nu_j / sum_J nu
 // B is the IEEE flat minimum: min_j dev_j / 0.664, reported with the tau where it occurs.
-// Uncertainty: var(log dev_j) ~ 1/(2 nu_j) (chi-squared with nu_j degrees of freedom); adjacent
-// octave points are strongly correlated, so the line's log-sd is taken as the mean of the
-// points' log-sds (full correlation: conservative).
+// Uncertainty: adjacent octave points are strongly correlated, so the line's log-sd is taken as
+// the weighted mean of the points' log-sds sqrt(1 / (2 nu_j)) (full correlation: conservative).
 // Absent terms: each term's AVAR is at most the total, so value <= dev_j / line_j(1) at every
 // point; the bound is the smallest over j of the points' one-sided upper confidence limits.
 #include <boost/math/distributions/normal.hpp>
@@ -49,6 +54,22 @@ bool on_line(NoiseTerm term, const std::vector<AvarPoint>& p, std::size_t j) {
   }
 }
 
+/// The longest run of consecutive indices in `on` (ascending); the first such run on a tie.
+std::vector<std::size_t> longest_run(const std::vector<std::size_t>& on) {
+  std::size_t best_start = 0, best_length = 0;
+  for (std::size_t start = 0; start < on.size();) {
+    std::size_t end = start + 1;
+    while (end < on.size() && on[end] == on[end - 1] + 1) ++end;
+    if (end - start > best_length) {
+      best_start = start;
+      best_length = end - start;
+    }
+    start = end;
+  }
+  return {on.begin() + static_cast<std::ptrdiff_t>(best_start),
+          on.begin() + static_cast<std::ptrdiff_t>(best_start + best_length)};
+}
+
 }  // namespace
 
 ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /*source*/,
@@ -76,6 +97,7 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
     for (std::size_t j = 0; j < points.size(); ++j) {
       if (on_line(term, points, j)) on.push_back(j);
     }
+    on = longest_run(on);
     const bool wanted = forced ? std::find(options.terms.begin(), options.terms.end(), term) !=
                                      options.terms.end()
                                : !on.empty();
@@ -98,12 +120,13 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
       const ReadOff r = read_off(term);
       double mean_log = 0, mean_sd = 0, edf = 0;
       for (const auto j : on) {
-        mean_log += std::log(points[j].dev) - r.slope * std::log(points[j].tau_s / r.tau_read_s);
-        mean_sd += std::sqrt(1 / (2 * points[j].edf));
-        edf += points[j].edf;
+        const double w = points[j].edf;
+        mean_log += w * (std::log(points[j].dev) - r.slope * std::log(points[j].tau_s / r.tau_read_s));
+        mean_sd += w * std::sqrt(1 / (2 * points[j].edf));
+        edf += w;
       }
-      mean_log /= static_cast<double>(on.size());
-      mean_sd /= static_cast<double>(on.size());
+      mean_log /= edf;
+      mean_sd /= edf;
       p.in_model = true;
       p.value = std::exp(mean_log) / r.coefficient;
       p.ci_low = p.value * std::exp(-z * mean_sd);
