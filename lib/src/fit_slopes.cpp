@@ -8,9 +8,10 @@
 //                        -1/2), -1 (B, 0), -2 (K, +1/2); R (+1): alpha -2 points whose local
 //                        ADEV slope exceeds kRampSlope
 // A slope holds over a range of tau, so J is one run: noise identification at a low-EDF point
-// can call a single point of another region white or random walk, and such a stray point far
-// from the term's region (a flicker-floor point 600 s out read on the -1/2 line) moved N by
-// +50-65 % in about half the MEMS channels (bench_fit_accuracy, exploration seeds 1001-1030).
+// can call a point of another region white or random walk, and such a stray point far from
+// the term's region (MEMS gyro seed 1001 y: the random-walk points at 655 and 1311 s called
+// white, read on the -1/2 line) moved N by +50-65 % in about half the MEMS channels
+// (bench_fit_accuracy, exploration seeds 1001-1030).
 // Line with fixed slope in log-log (AVLR, THEORY.md section 7), each point weighted by its EDF
 // (var(log dev_j) ~ 1/(2 nu_j)):
 //   log(c value) = sum_J w_j [log dev_j - s log(tau_j / tau_r)],  w_j = nu_j / sum_J nu
