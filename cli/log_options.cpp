@@ -178,6 +178,18 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.unit = args.unit;
   if (!args.unit.empty()) {
     const Unit unit = parse_unit(args.unit);
+    // Increments and phase are amounts (deg, m/s, s), never rates: a rate unit with them is a
+    // mix-up of --kind or --unit that would otherwise give deviations in deg/s^2 or m/s^3.
+    if (loaded.kind != DataKind::rate &&
+        (unit.dimension == dim::angular_rate || unit.dimension == dim::acceleration)) {
+      throw Error("--unit " + args.unit + " is " +
+                  (unit.dimension == dim::angular_rate ? "an angular rate" : "an acceleration") +
+                  ", but --kind " + std::string(to_string(loaded.kind)) +
+                  " says the values are " +
+                  (loaded.kind == DataKind::increment ? "per-sample increments" : "an integrated phase") +
+                  " (e.g. deg, rad, m/s); give --kind rate for rates, or the unit of the " +
+                  (loaded.kind == DataKind::increment ? "increments" : "phase"));
+    }
     loaded.to_si = unit.factor;
     loaded.dimension = unit.dimension;
   }

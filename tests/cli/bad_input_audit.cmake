@@ -136,3 +136,14 @@ sigmatau_cli_test(NAME cli_audit_fit_saved_adev_without_options EXIT 0 STDOUT "g
   ARGS fit ${audit_out}/adev_saved.json)
 set_tests_properties(cli_audit_fit_saved_adev_with_log_options
   cli_audit_fit_saved_adev_without_options PROPERTIES DEPENDS cli_audit_fit_saved_adev_make)
+
+# A rate unit with --kind increment or phase was accepted by adev and psd (exit 0, deviations
+# labelled (deg/s)/s); fit and analyze already refused it. Increments and phase are amounts.
+sigmatau_cli_test(NAME cli_audit_adev_increment_with_rate_unit EXIT 2
+  STDERR "--unit deg/s is an angular rate, but --kind increment says the values are per-sample increments"
+  ARGS adev ${audit_log} --time-column t --kind increment --unit deg/s)
+sigmatau_cli_test(NAME cli_audit_psd_phase_with_acceleration_unit EXIT 2
+  STDERR "--unit m/s\\^2 is an acceleration, but --kind phase says the values are an integrated phase"
+  ARGS psd ${audit_log} --time-column t --kind phase --unit m/s^2)
+sigmatau_cli_test(NAME cli_audit_adev_increment_with_angle_unit EXIT 0 STDOUT "tau"
+  ARGS adev ${audit_log} --time-column t --kind increment --unit deg --format csv)
