@@ -65,7 +65,16 @@ void remove_pending_temporaries() noexcept {
   for (auto& slot : pending_slots) {
     if (slot.state.load(std::memory_order_acquire) == kArmed) ::unlink(slot.path.data());
   }
+  // Directories last, once their tracked files are gone (rmdir fails on a file or a directory
+  // that is not empty, and leaves it).
+  for (auto& slot : pending_slots) {
+    if (slot.state.load(std::memory_order_acquire) == kArmed) ::rmdir(slot.path.data());
+  }
 }
+
+InterruptCleanup::InterruptCleanup(const std::filesystem::path& path) : slot_(track_pending(path)) {}
+
+InterruptCleanup::~InterruptCleanup() { untrack_pending(slot_); }
 
 void check_can_create_in(const std::filesystem::path& path) {
   std::error_code ec;

@@ -13,8 +13,10 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -45,22 +47,35 @@ std::string terminal_for(PlotFormat format) {
   return "svg";
 }
 
-/// A private scratch directory, removed with everything in it when this object goes.
+/// A private scratch directory, removed with everything in it when this object goes. The
+/// directory and every file named through file() are also on the interrupt clean-up table
+/// (InterruptCleanup), so a plot interrupted by a signal leaves nothing in $TMPDIR.
 class ScratchDir {
  public:
   ScratchDir() {
     std::string pattern = (std::filesystem::temp_directory_path() / "sigmatau-plot-XXXXXX").string();
     if (!::mkdtemp(pattern.data())) throw Error("cannot create a temporary directory for plots");
     path_ = pattern;
+    tracked_.push_back(std::make_unique<InterruptCleanup>(path_));
   }
   ~ScratchDir() {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
   }
-  const std::filesystem::path& path() const { return path_; }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  /// The path of a file named `name` in the directory, tracked for an interrupt (tracked
+  /// before anything creates it).
+  std::filesystem::path file(const std::string& name) {
+    auto path = path_ / name;
+    tracked_.push_back(std::make_unique<InterruptCleanup>(path));
+    return path;
+  }
 
  private:
   std::filesystem::path path_;
+  std::vector<std::unique_ptr<InterruptCleanup>> tracked_;
 };
 
 /// The palette for curves without their own colour (colour-blind-safe "tab10" order).
@@ -103,13 +118,13 @@ void write_blocks(const std::filesystem::path& file, const std::vector<PlotCurve
 }
 
 void run_gnuplot(const std::string& script_name, const std::string& assignments,
-                 const std::filesystem::path& rendered, const ScratchDir& scratch) {
+                 const std::filesystem::path& rendered, ScratchDir& scratch) {
   if (!gnuplot_available()) {
     throw Error("gnuplot not found; install it with: apt-get install gnuplot-nox");
   }
   const auto script = resource_dir("plots") / script_name;
   if (!std::filesystem::exists(script)) throw Error("plot template missing: " + script.string());
-  const auto log = scratch.path() / "gnuplot.log";
+  const auto log = scratch.file("gnuplot.log");
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
@@ -172,10 +187,10 @@ void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::pat
   check_can_write(output, overwrite);
   if (plot.curves.empty()) throw Error("nothing to plot");
   ScratchDir scratch;
-  const auto data = scratch.path() / "adev.dat";
-  const auto lines = scratch.path() / "lines.dat";
-  const auto markers = scratch.path() / "markers.dat";
-  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  const auto data = scratch.file("adev.dat");
+  const auto lines = scratch.file("lines.dat");
+  const auto markers = scratch.file("markers.dat");
+  const auto rendered = scratch.file("plot" + output.extension().string());
   write_blocks(data, plot.curves, true);
   write_blocks(lines, plot.lines, false);
   write_blocks(markers, plot.markers, false);
@@ -199,9 +214,9 @@ void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path&
   check_can_write(output, overwrite);
   if (plot.curves.empty()) throw Error("nothing to plot");
   ScratchDir scratch;
-  const auto data = scratch.path() / "psd.dat";
-  const auto lines = scratch.path() / "lines.dat";
-  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  const auto data = scratch.file("psd.dat");
+  const auto lines = scratch.file("lines.dat");
+  const auto rendered = scratch.file("plot" + output.extension().string());
   write_blocks(data, plot.curves, false);
   write_blocks(lines, plot.lines, false);
   const std::string assignments =
@@ -221,8 +236,8 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
   check_can_write(output, overwrite);
   if (plot.rows.empty()) throw Error("nothing to plot");
   ScratchDir scratch;
-  const auto data = scratch.path() / "compliance.dat";
-  const auto rendered = scratch.path() / ("plot" + output.extension().string());
+  const auto data = scratch.file("compliance.dat");
+  const auto rendered = scratch.file("plot" + output.extension().string());
   {
     std::ofstream out(data);
     out.precision(10);

@@ -147,3 +147,32 @@ sigmatau_cli_test(NAME cli_audit_psd_phase_with_acceleration_unit EXIT 2
   ARGS psd ${audit_log} --time-column t --kind phase --unit m/s^2)
 sigmatau_cli_test(NAME cli_audit_adev_increment_with_angle_unit EXIT 0 STDOUT "tau"
   ARGS adev ${audit_log} --time-column t --kind increment --unit deg --format csv)
+
+# An interrupted plot left its scratch directory (sigmatau-plot-XXXXXX: the data files, the
+# gnuplot log) in $TMPDIR. A stand-in `gnuplot` that only sleeps holds the run inside the plot
+# step, with every scratch file written, while the signal arrives; TMPDIR is a private
+# directory, which must be empty afterwards, and the plot must not appear.
+# Arguments of the script: $1 the CLI, $2 a scratch directory, $3 the log.
+set(plot_interrupt_check [=[
+set -m
+dir=$2; rm -rf "$dir" && mkdir -p "$dir/tmp" "$dir/bin" "$dir/out" || exit 1
+printf '#!/bin/sh\necho $$ > "%s"\nexec sleep 30\n' "$dir/gnuplot.pid" > "$dir/bin/gnuplot"
+chmod +x "$dir/bin/gnuplot"
+TMPDIR=$dir/tmp PATH=$dir/bin:$PATH "$1" adev "$3" --time-column t --plot "$dir/out/adev.pdf" \
+  >/dev/null 2>&1 &
+pid=$!
+for i in $(seq 300); do ls "$dir"/tmp/*/adev.dat >/dev/null 2>&1 && break; sleep 0.1; done
+stop_gnuplot() { [ -s "$dir/gnuplot.pid" ] && kill -KILL "$(cat "$dir/gnuplot.pid")" 2>/dev/null; }
+if ! ls "$dir"/tmp/*/adev.dat >/dev/null 2>&1; then
+  echo "the plot step was never reached"; kill -KILL $pid; stop_gnuplot; rm -rf "$dir"; exit 1
+fi
+kill -INT $pid; wait $pid; rc=$?
+left=$(cd "$dir/tmp" && find . -mindepth 1); out=$(ls -A "$dir/out")
+stop_gnuplot
+echo "exit $rc (expected 130); left in TMPDIR: '$left'; outputs: '$out'"
+rm -rf "$dir"
+[ "$rc" = 130 ] && [ -z "$left" ] && [ -z "$out" ]
+]=])
+add_test(NAME cli_audit_interrupted_plot_leaves_no_scratch
+         COMMAND bash -c "${plot_interrupt_check}" plot_interrupt $<TARGET_FILE:sigmatau_cli>
+                 ${audit_out}/plot_interrupt ${audit_log})

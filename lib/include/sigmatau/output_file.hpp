@@ -27,12 +27,28 @@ void check_can_write(const std::filesystem::path& path, bool overwrite);
 void check_can_create_in(const std::filesystem::path& path);
 
 /// Unlinks the temporary file of every AtomicOutputFile that is open and not yet committed, and
-/// nothing else (the outputs themselves are never touched). Uses only async-signal-safe calls,
+/// the scratch paths an InterruptCleanup tracks, and nothing else (the outputs themselves are
+/// never touched). Uses only async-signal-safe calls,
 /// so a SIGINT / SIGTERM handler can call it before the process dies: an interrupted run then
 /// leaves neither its output nor a partial "<path>.tmp-<random>" behind. A temporary name longer
 /// than 4095 bytes, or more than 32 open at once, is not tracked (it is still removed on the
 /// ordinary paths: commit, exception, destructor).
 void remove_pending_temporaries() noexcept;
+
+/// Puts a scratch file or directory of the run (not an output) on the same interrupt clean-up
+/// table for as long as this object lives: remove_pending_temporaries() unlinks tracked files,
+/// then removes tracked directories that are empty by then. The owner still removes the path
+/// on the ordinary paths; this only covers a signal. Untracked silently when the table is full.
+class InterruptCleanup {
+ public:
+  explicit InterruptCleanup(const std::filesystem::path& path);
+  ~InterruptCleanup();
+  InterruptCleanup(const InterruptCleanup&) = delete;
+  InterruptCleanup& operator=(const InterruptCleanup&) = delete;
+
+ private:
+  int slot_ = -1;
+};
 
 /// A file written piece by piece (too large to hold as one string) that appears at `path` only
 /// when commit() succeeds: it is written to "<path>.tmp-<random>" in the same directory, and the
