@@ -62,6 +62,14 @@
 // only removes BIC's chi-bar false positives (4.4 % -> 0.3 %). Reported seeds 1-200 with it and
 // the exact (FFT-free) covariance: 92.8 / 96.8 / 99.2 / 61.5 / 89.2 %, quantized gyro 93.8 %;
 // MEMS: K left out 6.5 % (its median error 15.3 %), Q added 0.7 %.
+// How much of K's error is selection's: the joint fit told the true terms (bench row "joint,
+// true terms", seeds 1-200) has K's median error 15.1 % (95 % interval of the median 13.3-16.6),
+// against 15.3 % (13.4-16.7) selected: the octave curve of a 2 h log holds about 15 % on K
+// whatever the selection. More of the curve did not add to it (exploration seeds 1001-1100,
+// MEMS): octave taus up to (N-1)/2 (one more point, 2621 s, EDF 1.3) K 14.8 -> 15.0 %; ten taus
+// per decade 15.4 % and the true set 85 % (more points, larger ln n). Nor did the log itself:
+// the exact Gaussian likelihood of its 4 s block-mean increments gives K to 16.7 % against the
+// told fit's 14.6 % (bench_k_likelihood, bench/results_k_likelihood.md).
 // What limits selection now: MEMS, K's evidence at the last three points (left out in ~6 %);
 // tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).
