@@ -327,6 +327,14 @@ TEST_CASE("a slope line is read over one run of points: a stray identification i
   // by far the largest EDF), K came out 43x too large.
   SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::rate_random_walk).value, 1e-3, 0.07);
   SIGMATAU_CHECK_REL(f.slopes->parameter(NoiseTerm::white).value, 1e-3, 0.07);
+
+  SUBCASE("two runs of one point each: K is read at the end of the curve, where it lives") {
+    for (auto& p : curve.points) p.confidence.noise.alpha = p.value.tau_s < crossing / 8 ? 0 : -1;
+    curve.points[2].confidence.noise.alpha = -2;
+    curve.points.back().confidence.noise.alpha = -2;
+    const NoiseFit g = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
+    SIGMATAU_CHECK_REL(g.slopes->parameter(NoiseTerm::rate_random_walk).value, 1e-3, 0.07);
+  }
 }
 
 TEST_CASE("bad inputs are clear errors") {

@@ -55,13 +55,15 @@ bool on_line(NoiseTerm term, const std::vector<AvarPoint>& p, std::size_t j) {
   }
 }
 
-/// The longest run of consecutive indices in `on` (ascending); the first such run on a tie.
-std::vector<std::size_t> longest_run(const std::vector<std::size_t>& on) {
+/// The longest run of consecutive indices in `on` (ascending). On a tie, the run at the end of
+/// the curve where the term lives: the last for the large-tau terms (K, R), the first otherwise.
+std::vector<std::size_t> longest_run(const std::vector<std::size_t>& on, NoiseTerm term) {
+  const bool prefer_last = term == NoiseTerm::rate_random_walk || term == NoiseTerm::rate_ramp;
   std::size_t best_start = 0, best_length = 0;
   for (std::size_t start = 0; start < on.size();) {
     std::size_t end = start + 1;
     while (end < on.size() && on[end] == on[end - 1] + 1) ++end;
-    if (end - start > best_length) {
+    if (end - start > best_length || (prefer_last && end - start == best_length)) {
       best_start = start;
       best_length = end - start;
     }
@@ -98,7 +100,7 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
     for (std::size_t j = 0; j < points.size(); ++j) {
       if (on_line(term, points, j)) on.push_back(j);
     }
-    on = longest_run(on);
+    on = longest_run(on, term);
     const bool wanted = forced ? std::find(options.terms.begin(), options.terms.end(), term) !=
                                      options.terms.end()
                                : !on.empty();
