@@ -4,8 +4,8 @@
 // distribution-free 95 % interval of that median), the coverage of the intervals, how often the
 // selected model is the true set of terms, and the run time of each method. A third row per
 // parameter, "joint, true terms", is the joint fit told the true set (--terms): what the curve
-// holds about a parameter once the model is known, so the cost of selecting it shows. A plain program (not Google Benchmark): it measures error and speed
-// together. Usage:
+// holds about a parameter once the model is known, so the cost of selecting it shows. A plain
+// program (not Google Benchmark): it measures error and speed together. Usage:
 //   bench_fit_accuracy OUT_PREFIX [SEEDS=200] [PROFILES=mems_gyro,tactical_gyro,consumer_accel,
 //                      weak_flicker_gyro,ramp_gyro] [TAUS=octave] [FIRST_SEED=1]
 // (TAUS: a --taus spec: octave, many:P, ...; FIRST_SEED: seeds FIRST_SEED .. FIRST_SEED+SEEDS-1,
@@ -135,15 +135,12 @@ void record(MethodTally& tally, const ChannelFit& fit, const NoiseTerms& truth,
   ++tally.models[name.empty() ? "-" : name];
   for (const NoiseTerm term : true_terms) {
     const auto& p = fit.parameter(term);
-    row.out << row.profile << ',' << row.method << ',' << row.seed << ',' << row.axis << ",\""
-            << name << "\"," << term_symbol(term) << ',' << truth_of(truth, term) << ','
-            << (p.in_model ? 1 : 0) << ',' << p.value << ',' << p.ci_low << ',' << p.ci_high << ','
-            << p.upper_bound << '\n';
-  }
-  for (const NoiseTerm term : true_terms) {
-    const auto& p = fit.parameter(term);
-    Tally& t = tally.terms[term];
     const double x = truth_of(truth, term);
+    row.out << row.profile << ',' << row.method << ',' << row.seed << ',' << row.axis << ",\""
+            << name << "\"," << term_symbol(term) << ',' << x << ',' << (p.in_model ? 1 : 0)
+            << ',' << p.value << ',' << p.ci_low << ',' << p.ci_high << ',' << p.upper_bound
+            << '\n';
+    Tally& t = tally.terms[term];
     // A true term the model left out counts as a 100% error; its report is the statement
     // "below upper_bound", i.e. the interval [0, upper_bound], which covers when x <= bound.
     t.rel_error.push_back(p.in_model ? std::abs(p.value / x - 1) : 1.0);

@@ -28,9 +28,9 @@ void check_can_create_in(const std::filesystem::path& path);
 
 /// Unlinks the temporary file of every AtomicOutputFile that is open and not yet committed, and
 /// the scratch paths an InterruptCleanup tracks, and nothing else (the outputs themselves are
-/// never touched). Uses only async-signal-safe calls,
-/// so a SIGINT / SIGTERM handler can call it before the process dies: an interrupted run then
-/// leaves neither its output nor a partial "<path>.tmp-<random>" behind. A temporary name longer
+/// never touched). Uses only async-signal-safe calls, so a SIGINT / SIGTERM handler can call it
+/// before the process dies: an interrupted run then leaves neither its output nor a partial
+/// "<path>.tmp-<random>" behind. A temporary name longer
 /// than 4095 bytes, or more than 32 open at once, is not tracked (it is still removed on the
 /// ordinary paths: commit, exception, destructor).
 void remove_pending_temporaries() noexcept;
