@@ -137,6 +137,12 @@ void run_convert(const ConvertArguments& args) {
     return;
   }
   const std::string text = export_filter_config(noise, *format);
+  if (const auto missing = missing_filter_keys(noise, *format); !missing.empty()) {
+    std::string keys;
+    for (const auto& k : missing) keys += (keys.empty() ? "" : ", ") + k;
+    std::cerr << "sigmatau: warning: the " << to_string(*format) << " file lacks " << keys
+              << " (not in the input); that tool refuses it until they are added\n";
+  }
   if (!args.output.empty()) {
     write_file_atomically(args.output, text, args.force);
     if (args.explain) std::cout << noise.explain;

@@ -174,3 +174,53 @@ TEST_CASE("format names parse and an empty conversion cannot be exported") {
   empty.options.rate_hz = 100;
   CHECK_THROWS_AS(export_filter_config(empty, ExportFormat::json), Error);
 }
+
+TEST_CASE("YAML numbers always carry a decimal point (PyYAML reads 1e-05 as a string)") {
+  NoiseTerms g;
+  g.white = 2e-4;
+  g.rate_random_walk = 1e-5;
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "yaml");
+  for (const ExportFormat f : {ExportFormat::kalibr, ExportFormat::openvins}) {
+    const std::string text = export_filter_config(noise, f);
+    CHECK(text.find("gyroscope_random_walk: 1.0e-05") != std::string::npos);
+    // No number anywhere of the form digits, 'e', exponent without a '.' before it.
+    CHECK_FALSE(std::regex_search(text, std::regex(R"((^|[^.\d])\d+e[-+]\d)")));
+  }
+}
+
+TEST_CASE("files a filter cannot load say what is missing") {
+  NoiseTerms g;
+  g.white = 2e-4;  // gyro white noise only: no accelerometer, no random walk
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "gyro only");
+  CHECK(missing_filter_keys(noise, ExportFormat::kalibr) ==
+        std::vector<std::string>{"accelerometer_noise_density", "accelerometer_random_walk",
+                                 "gyroscope_random_walk"});
+  CHECK(missing_filter_keys(noise, ExportFormat::vins_fusion) ==
+        std::vector<std::string>{"acc_n", "acc_w", "gyr_w"});
+  CHECK(missing_filter_keys(noise, ExportFormat::px4).empty());  // PX4 keeps its defaults
+  CHECK(missing_filter_keys(reference_noise(), ExportFormat::openvins).empty());
+  CHECK(export_filter_config(noise, ExportFormat::kalibr)
+            .find("# gyroscope_random_walk: not given; Kalibr needs it") != std::string::npos);
+}
+
+TEST_CASE("a bias random walk made from a bias stability is named a rule of thumb in the file") {
+  NoiseTerms g;
+  g.white = 2e-4;
+  g.bias_instability = 1e-5;
+  ConvertOptions o;
+  o.rate_hz = 100;
+  o.t_ref_s = 50;
+  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "stability");
+  for (const ExportFormat f : {ExportFormat::kalibr, ExportFormat::vins_fusion, ExportFormat::px4,
+                               ExportFormat::gtsam}) {
+    CHECK(export_filter_config(noise, f).find("rule of thumb") != std::string::npos);
+    CHECK(export_filter_config(noise, f).find("T_ref = 50 s") != std::string::npos);
+  }
+  // From a K given as such, no such line.
+  CHECK(export_filter_config(reference_noise(), ExportFormat::kalibr).find("rule of thumb") ==
+        std::string::npos);
+}

@@ -307,11 +307,18 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
             {ExportFormat::gtsam, "gtsam_" + label + ".txt"},
             {ExportFormat::px4, "px4_ekf2_" + label + ".params"}};
         json entry = {{"rate_hz", rate}, {"explain", noise.explain}, {"files", json::array()}};
+        std::string incomplete;
         for (const auto& [format, file] : kFiles) {
           const std::string text = export_filter_config(noise, format);
+          const std::vector<std::string> missing = missing_filter_keys(noise, format);
+          if (!missing.empty()) incomplete += (incomplete.empty() ? "" : ", ") + file;
           output.filter_files[file] = text;
           entry["files"].push_back(file);
           if (format == ExportFormat::json) entry["discrete"] = json::parse(text);
+        }
+        if (!incomplete.empty()) {
+          warnings.push_back(incomplete + " lack terms the log did not give (a comment marks each); "
+                             "Kalibr, OpenVINS and VINS-Fusion need all four: add them before use");
         }
         results["filter"].push_back(entry);
       } catch (const Error& e) {

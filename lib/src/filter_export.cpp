@@ -26,10 +26,15 @@ constexpr Px4Range kPx4AccNoise{"EKF2_ACC_NOISE", 0.01, 1.0};
 constexpr Px4Range kPx4GyrBNoise{"EKF2_GYR_B_NOISE", 0.0, 0.01};
 constexpr Px4Range kPx4AccBNoise{"EKF2_ACC_B_NOISE", 0.0, 0.01};
 
+/// %.7g, with a decimal point before any exponent: YAML 1.1 readers (PyYAML's safe_load in
+/// Kalibr) take "1e-05" for a string and only "1.0e-05" for a number.
 std::string num(double v) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.7g", v);
-  return buffer;
+  std::string text = buffer;
+  const auto e = text.find('e');
+  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
+  return text;
 }
 
 bool uniform(const Eigen::Vector3d& v) { return v(0) == v(1) && v(1) == v(2); }
@@ -48,6 +53,18 @@ std::string header(const DiscreteNoise& n, const std::string& format_line) {
   o << "# IMU rate " << num(n.options.rate_hz) << " Hz; density convention "
     << to_string(n.options.convention) << "; inflation factor " << num(n.options.inflate)
     << "; bias model " << to_string(n.options.bias_model) << "\n";
+  for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
+    if (!t || !t->bias || t->bias->source != BiasSource::bias_stability) continue;
+    const std::string sensor(to_string(t->sensor));
+    if (t->bias->model == BiasModel::random_walk) {
+      o << "# " << sensor << " bias random walk from the bias stability B by the rule of thumb "
+        << "K = B_ds / sqrt(T_ref), B_ds the printed stability (ADEV floor 0.664 B), T_ref = " << num(t->bias->t_ref_s)
+        << " s (--tref): not a measured K\n";
+    } else {
+      o << "# " << sensor << " bias Gauss-Markov from the bias stability B with its ADEV minimum "
+        << "at tau = " << num(t->bias->tau_min_s) << " s (--tau-min)\n";
+    }
+  }
   return o.str();
 }
 
@@ -94,7 +111,8 @@ std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptio
     if (present) {
       o << indent << key << ": " << num(v) << "  # [" << unit << "]\n";
     } else {
-      o << indent << "# " << key << ": not given\n";
+      o << indent << "# " << key << ": not given; " << (openvins ? "OpenVINS" : "Kalibr")
+        << " needs it: add it before use\n";
     }
   };
   if (openvins) {
@@ -114,6 +132,14 @@ std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptio
     o << "  rostopic: " << options.rostopic << "\n";
     o << "  time_offset: 0.0\n";
     o << "  update_rate: " << num(n.options.rate_hz) << "  # [Hz]\n";
+    // OpenVINS reads the IMU intrinsics from this block too and stops when one is missing
+    // (ov_msckf VioManagerOptions.h); identities are "no intrinsic calibration".
+    o << "  model: \"kalibr\"  # identity intrinsics below: replace with your calibration\n";
+    const char* identity = "    - [1.0, 0.0, 0.0]\n    - [0.0, 1.0, 0.0]\n    - [0.0, 0.0, 1.0]\n";
+    for (const char* key : {"Tw", "R_IMUtoGYRO", "Ta", "R_IMUtoACC"}) {
+      o << "  " << key << ":\n" << identity;
+    }
+    o << "  Tg:\n    - [0.0, 0.0, 0.0]\n    - [0.0, 0.0, 0.0]\n    - [0.0, 0.0, 0.0]\n";
   }
   return o.str();
 }
@@ -133,7 +159,7 @@ std::string vins(const DiscreteNoise& n) {
     if (present) {
       o << key << ": " << num(v) << "  # [" << unit << "] " << what << "\n";
     } else {
-      o << "# " << key << ": not given\n";
+      o << "# " << key << ": not given; VINS needs it: add it before use\n";
     }
   };
   line("acc_n", a.white, a.n * std::sqrt(2 * fs), "m/s^2", "accelerometer measurement noise");
@@ -295,6 +321,38 @@ std::string_view to_string(ExportFormat format) {
     case ExportFormat::json: return "json";
   }
   return "?";
+}
+
+std::vector<std::string> missing_filter_keys(const DiscreteNoise& noise, ExportFormat format) {
+  const auto has = [](const std::optional<TriadDiscrete>& t, bool white) {
+    return t && (white ? t->white.has_value() : t->bias.has_value());
+  };
+  const bool an = has(noise.accel, true), ak = has(noise.accel, false);
+  const bool gn = has(noise.gyro, true), gk = has(noise.gyro, false);
+  std::vector<std::string> missing;
+  const auto need = [&](bool present, const char* key) {
+    if (!present) missing.emplace_back(key);
+  };
+  switch (format) {
+    case ExportFormat::kalibr:
+    case ExportFormat::openvins:
+      need(an, "accelerometer_noise_density");
+      need(ak, "accelerometer_random_walk");
+      need(gn, "gyroscope_noise_density");
+      need(gk, "gyroscope_random_walk");
+      break;
+    case ExportFormat::vins_fusion:
+      need(an, "acc_n");
+      need(gn, "gyr_n");
+      need(ak, "acc_w");
+      need(gk, "gyr_w");
+      break;
+    case ExportFormat::gtsam:
+    case ExportFormat::px4:
+    case ExportFormat::json:
+      break;  // PX4 keeps its defaults; GTSAM and JSON are read by the user's own code
+  }
+  return missing;
 }
 
 std::string export_filter_config(const DiscreteNoise& noise, ExportFormat format,

@@ -40,7 +40,12 @@ sigmatau_cli_test(NAME cli_convert_no_output_without_force EXIT 2
   ARGS convert --spec safran_stim300 --rate 125 --to kalibr -o ${PROJECT_SOURCE_DIR}/specs/safran_stim300.yaml)
 
 # From a fit result (hand-written: N = 4.363e-5 rad/s/sqrt(Hz) on gx -> Kalibr writes it as is).
-sigmatau_cli_test(NAME cli_convert_from_fit EXIT 0 STDOUT "gyroscope_noise_density: 2e-05"
+# 2.0e-05, not 2e-05: PyYAML (Kalibr) reads an exponent without a decimal point as a string.
+sigmatau_cli_test(NAME cli_convert_from_fit EXIT 0 STDOUT "gyroscope_noise_density: 2.0e-05"
+  ARGS convert --fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json --rate 200 --to kalibr)
+# A gyro-only fit cannot fill Kalibr's accelerometer keys: the file says so and so does stderr.
+sigmatau_cli_test(NAME cli_convert_incomplete_warns EXIT 0
+  STDERR "the kalibr file lacks accelerometer_noise_density, accelerometer_random_walk"
   ARGS convert --fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json --rate 200 --to kalibr)
 sigmatau_cli_test(NAME cli_convert_two_sources EXIT 2 STDERR "give one of"
   ARGS convert --fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json --spec tdk_mpu6050 --rate 200)

@@ -30,6 +30,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sigmatau/convert.hpp"
 
@@ -47,6 +48,11 @@ struct ExportOptions {
   /// PX4 EKF2 prediction interval dt [s] (EKF2_PREDICT_US default 10000 us; THEORY.md 5.5).
   double px4_predict_interval_s = 0.01;
 };
+
+/// The keys `format` requires that `noise` cannot fill (Kalibr, OpenVINS and VINS-Fusion
+/// refuse a file without all four; PX4 keeps its defaults; GTSAM and JSON: none). The file
+/// still says which, in a comment where each would be.
+std::vector<std::string> missing_filter_keys(const DiscreteNoise& noise, ExportFormat format);
 
 /// The file text for `format`. Throws Error when nothing convertible is present (no triad).
 std::string export_filter_config(const DiscreteNoise& noise, ExportFormat format,
