@@ -8,6 +8,7 @@
 # ci_high; linefile and markerfile columns: tau value.
 # Edit freely: sigmatau only sets the variables above.
 
+set encoding utf8  # the axis label's tau: Symbol-font letters show as Latin in browsers
 if (term eq 'svg') {
   set terminal svg size 1100,700 dynamic enhanced font 'Helvetica,18' background rgb 'white'
 } else {
@@ -22,7 +23,7 @@ set title title_text noenhanced
 set logscale xy
 set format x '10^{%L}'
 set format y '10^{%L}'
-set xlabel 'averaging time {/Symbol t} [s]'
+set xlabel 'averaging time τ [s]'
 set ylabel ylabel_text noenhanced
 set grid xtics ytics mxtics mytics lc rgb '#dddddd' lw 1
 set key outside right top box opaque samplen 2 font ',13' noenhanced
