@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "log_options.hpp"
@@ -26,6 +27,8 @@ struct FitArguments {
   std::string method = "joint";
   std::string terms;
   double ci = 0.95;
+  double tau_min_s = 0;
+  double tau_max_s = std::numeric_limits<double>::infinity();
   std::string format = "table";
   std::string output;
   bool force = false;
@@ -133,6 +136,9 @@ std::string render_json(const std::string& input, const std::vector<Channel>& ch
     if (c.fit.joint) {
       j["chi_squared"] = primary.chi_squared;
       j["bic"] = primary.bic;
+      j["dof"] = primary.dof;
+      j["p_value"] = primary.p_value;
+      j["misfit_tau_s"] = primary.misfit_tau_s;
     }
     if (c.fit.joint && c.fit.slopes) {
       j["slopes"] = {{"model_terms", terms_json(*c.fit.slopes)},
@@ -186,6 +192,12 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     }
     out << "\n";
   }
+  if (fit.method == FitMethod::joint) {
+    std::snprintf(line, sizeof line, "   goodness of fit: chi-squared %.4g for %d degrees of freedom, p = %.2g%s\n",
+                  fit.chi_squared, fit.dof, fit.p_value,
+                  fit.p_value < kMisfitPValue ? " (the model does not describe the curve)" : "");
+    out << line;
+  }
 }
 
 std::string render_table(const std::string& input, const std::vector<Channel>& channels,
@@ -204,11 +216,16 @@ std::string render_table(const std::string& input, const std::vector<Channel>& c
       const TermUnits u = units_of(e.term, t.sensor);
       const double f = convert(1.0, u.si, u.sheet);
       char line[200];
-      std::snprintf(line, sizeof line, "%-2s %-22s mean %12.5g  worst %12.5g (%s)  %s\n",
+      std::snprintf(line, sizeof line, "%-2s %-22s mean %12.5g  worst %12.5g (%s)  %s",
                     std::string(term_symbol(e.term)).c_str(),
                     std::string(term_name(e.term, t.sensor)).c_str(), e.mean * f, e.worst * f,
                     e.worst_channel.c_str(), u.sheet);
       out << line;
+      if (e.channels_in_model < static_cast<int>(t.channels.size())) {
+        out << "  (over the " << e.channels_in_model << " of " << t.channels.size()
+            << " channels that have it)";
+      }
+      out << "\n";
     }
   }
   return out.str();
@@ -299,6 +316,12 @@ void run_fit(const FitArguments& args) {
     throw Error("--ci: confidence level must be in (0, 1), got " + std::to_string(args.ci));
   }
   options.confidence_level = args.ci;
+  if (!(args.tau_min_s >= 0) || !(args.tau_max_s > args.tau_min_s)) {
+    throw Error("--tau-min / --tau-max: expected 0 <= tau-min < tau-max [s], got " +
+                std::to_string(args.tau_min_s) + " and " + std::to_string(args.tau_max_s));
+  }
+  options.tau_min_s = args.tau_min_s;
+  options.tau_max_s = args.tau_max_s;
   if (args.format != "table" && args.format != "json") {
     throw Error("--format must be table or json, got \"" + args.format + "\"");
   }
@@ -328,6 +351,10 @@ void run_fit(const FitArguments& args) {
     LoadedChannels unit_only;
     set_input_unit(args.log, unit_only);
     const std::optional<Sensor> from_unit = sensor_from_unit(unit_only);
+    if (args.log.unit.empty()) {
+      std::cerr << "sigmatau: no --unit: the values are taken as SI (rad/s for a gyro, m/s^2 for "
+                   "an accelerometer)\n";
+    }
     const std::int64_t memory = parse_bytes(args.memory);
     LogCurves log = exact_needs_out_of_core(args.log, memory)
                         ? oadev_out_of_core(args.log, args.threads)
@@ -354,6 +381,12 @@ void run_fit(const FitArguments& args) {
     fits.push_back(c.fit.joint ? &*c.fit.joint : &*c.fit.slopes);
   }
   const auto triads = summarise_triads(names, sensors, fits);
+  for (const auto& c : channels) {
+    if (!c.fit.joint) continue;
+    if (const std::string w = misfit_warning(*c.fit.joint, c.name); !w.empty()) {
+      std::cerr << "sigmatau: warning: " << w << "\n";
+    }
+  }
   const std::string text = args.format == "json"
                                ? render_json(args.log.input, channels, triads, args.ci)
                                : render_table(args.log.input, channels, triads, args.ci);
@@ -384,6 +417,10 @@ void add_fit_command(CLI::App& app) {
       });
   command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
       ->capture_default_str();
+  command->add_option("--tau-min", args->tau_min_s,
+                      "fit only taus >= this [s] (a sensor that filters its output departs from "
+                      "the noise terms at the shortest taus)");
+  command->add_option("--tau-max", args->tau_max_s, "fit only taus <= this [s]");
   command->add_option("--format", args->format, "table | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");

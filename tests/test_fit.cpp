@@ -390,3 +390,52 @@ TEST_CASE("a saved adev result is read back in SI") {
   // deg/s -> rad/s is pi/180 exactly as units.hpp defines it.
   SIGMATAU_CHECK_REL(saved[0].curve.points[0].value.dev, 3.14159265358979323846 / 180, 1e-15);
 }
+
+TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min mends it") {
+  const CurveSource source{kTau0, kSamples + 1, 0};
+  // A sensor that low-pass filters its output: the first three points 20 % below N^2 / tau.
+  AllanCurve filtered = exact_curve(nbk());
+  for (std::size_t j = 0; j < 3; ++j) filtered.points[j].value.dev *= 0.8;
+  const NoiseFit bad = fit_noise(filtered, source, FitOptions{});
+  REQUIRE(bad.joint);
+  CHECK(bad.joint->p_value < kMisfitPValue);
+  // The fit bends toward the filtered points, so the furthest is among them or next to them.
+  CHECK(bad.joint->misfit_tau_s <= filtered.points[3].value.tau_s);
+  CHECK(misfit_warning(*bad.joint, "gx").find("gx: no model") == 0);
+
+  FitOptions from_fourth;
+  from_fourth.tau_min_s = filtered.points[3].value.tau_s;
+  const NoiseFit good = fit_noise(filtered, source, from_fourth);
+  CHECK(good.joint->points == bad.joint->points - 3);
+  CHECK(good.joint->p_value > 0.5);  // an exact curve from there on: chi-squared ~ 0
+  CHECK(misfit_warning(*good.joint, "gx").empty());
+  // 1e-6 as for any exact curve: the filtered points no longer enter.
+  SIGMATAU_CHECK_REL(good.joint->parameter(NoiseTerm::bias_instability).value,
+                     *nbk().bias_instability, 1e-6);
+
+  FitOptions too_narrow;
+  too_narrow.tau_min_s = filtered.points[filtered.points.size() - 3].value.tau_s;
+  CHECK_THROWS_WITH_AS(fit_noise(filtered, source, too_narrow), doctest::Contains("in the tau range"),
+                       Error);
+}
+
+TEST_CASE("goodness of fit: p values of curves the model describes are not small") {
+  // 12 simulated N, B, K channels: the p value is ~uniform, so its median lies in [0.1, 0.9]
+  // (outside with probability < 1e-3) and at most one is below 1e-3 (two: probability ~7e-5).
+  std::vector<double> p;
+  int flagged = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const auto x = simulate_axis(nbk(), seed);
+    const auto series = PhaseSeries::from_rate(x, kTau0);
+    const AllanCurve curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
+    const NoiseFit f = fit_noise(curve, CurveSource{kTau0, series.size(), 0}, FitOptions{});
+    p.push_back(f.joint->p_value);
+    flagged += f.joint->p_value < kMisfitPValue;
+  }
+  std::sort(p.begin(), p.end());
+  const double median = 0.5 * (p[5] + p[6]);
+  INFO("median p " << median);
+  CHECK(median > 0.1);
+  CHECK(median < 0.9);
+  CHECK(flagged <= 1);
+}

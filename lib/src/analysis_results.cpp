@@ -127,6 +127,9 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"method", std::string(to_string(fit.method))},
           {"chi_squared", number_or_null(fit.chi_squared)},
           {"bic", number_or_null(fit.bic)},
+          {"dof", fit.dof},
+          {"p_value", number_or_null(fit.p_value)},
+          {"misfit_tau_s", number_or_null(fit.misfit_tau_s)},
           {"model_adev", {{"tau", taus}, {"adev", total}}},
           {"terms_adev", per_term},
           {"readouts", readouts}};
@@ -264,6 +267,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
     try {
       const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
       const ChannelFit& joint = *fit.joint;
+      if (const std::string w = misfit_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       const auto& points = curves[c].front().points;
       fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
                               points.back().value.tau_s));

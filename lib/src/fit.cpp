@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "fit_internal.hpp"
@@ -121,6 +122,7 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
       throw Error("fit: point tau = " + std::to_string(p.value.tau_s) + " s is not m tau0 = " +
                   std::to_string(tau) + " s (is the sample rate right?)");
     }
+    if (tau < options.tau_min_s * (1 - 1e-9) || tau > options.tau_max_s * (1 + 1e-9)) continue;
     detail::AvarPoint q;
     q.m = p.value.m;
     q.tau_s = tau;
@@ -136,8 +138,10 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
   }
   const int needed = std::max<int>(kMinFitPoints, static_cast<int>(options.terms.size()) + 1);
   if (static_cast<int>(points.size()) < needed) {
-    throw Error("fit: " + std::to_string(points.size()) + " usable OADEV points, need at least " +
-                std::to_string(needed) + " (a longer log, or a tau grid with more points)");
+    throw Error("fit: " + std::to_string(points.size()) + " usable OADEV points" +
+                (options.tau_min_s > 0 || std::isfinite(options.tau_max_s) ? " in the tau range" : "") +
+                ", need at least " + std::to_string(needed) +
+                " (a longer log, a wider tau range, or a tau grid with more points)");
   }
   std::sort(points.begin(), points.end(),
             [](const detail::AvarPoint& a, const detail::AvarPoint& b) { return a.m < b.m; });
@@ -159,6 +163,18 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     }
   }
   return fit;
+}
+
+std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {
+  if (!(fit.p_value < kMisfitPValue)) return "";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%s: no model of these noise terms describes the curve (chi-squared %.4g for %d "
+                "degrees of freedom, p = %.2g), furthest at tau = %.4g s: the terms and their "
+                "intervals are not to be trusted. If the sensor filters its output, fit from "
+                "longer taus (fit --tau-min)",
+                channel.c_str(), fit.chi_squared, fit.dof, fit.p_value, fit.misfit_tau_s);
+  return text;
 }
 
 std::vector<TriadSummary> summarise_triads(const std::vector<std::string>& names,

@@ -78,6 +78,7 @@
 //
 // Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance. Upper bounds of
 // terms left out: test inversion with the variance under the bound (upper_bound).
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 
 #include <Eigen/Cholesky>
@@ -302,6 +303,25 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   out.iterations = final_fit.iterations;
   out.chi_squared = final_fit.fit.chi2;
   out.bic = final_fit.fit.chi2 + count_positive(final_fit.fit.theta) * std::log(static_cast<double>(n));
+  out.dof = static_cast<int>(n) - count_positive(final_fit.fit.theta);
+  if (out.dof > 0 && std::isfinite(out.chi_squared)) {
+    out.p_value = boost::math::cdf(
+        boost::math::complement(boost::math::chi_squared_distribution<double>(out.dof),
+                                std::max(out.chi_squared, 0.0)));
+  }
+  {
+    const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
+    double worst = -1;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto& p = points[static_cast<std::size_t>(j)];
+      const double sd = model_avar(j) * std::sqrt(2 / p.edf);
+      const double z = sd > 0 ? std::abs(p.avar - model_avar(j)) / sd : INFINITY;
+      if (z > worst) {
+        worst = z;
+        out.misfit_tau_s = p.tau_s;
+      }
+    }
+  }
   for (int k = 0; k < kTermCount; ++k) {
     ParameterEstimate p;
     p.term = kFitTerms[static_cast<std::size_t>(k)];

@@ -35,3 +35,17 @@ sigmatau_cli_test(NAME cli_fit_too_short EXIT 2 STDERR "usable OADEV points, nee
 sigmatau_cli_test(NAME cli_fit_unknown_sensor EXIT 2 STDERR "gyro or an accelerometer"
   NO_FILE ${fit_dir}/unknown.json
   ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --columns t --rate 10 -o ${fit_dir}/unknown.json)
+
+# The tau range (--tau-min / --tau-max): a reversed range is refused; the table reports the
+# goodness of fit of the points fitted (8 of the 15 octave points from 1 s on, N and K: 6 degrees of freedom).
+sigmatau_cli_test(NAME cli_fit_tau_range_reversed EXIT 2 STDERR "--tau-min / --tau-max: expected"
+  ARGS fit ${example} --time-column t --unit deg/s --tau-min 10 --tau-max 1)
+sigmatau_cli_test(NAME cli_fit_tau_range EXIT 0
+  STDOUT "\"dof\": 6,.*\"p_value\":.*\"points\": 8,"
+  ARGS fit ${example} --time-column t --unit deg/s --columns gx --format json --tau-min 1)
+sigmatau_cli_test(NAME cli_fit_goodness_table EXIT 0
+  STDOUT "goodness of fit: chi-squared [0-9.e+]+ for [0-9]+ degrees of freedom, p = "
+  ARGS fit ${example} --time-column t --unit deg/s --columns gx)
+# Without --unit the values are SI, and stderr says so.
+sigmatau_cli_test(NAME cli_fit_no_unit_note EXIT 0 STDERR "no --unit: the values are taken as SI"
+  ARGS fit ${example} --time-column t --columns gx)

@@ -34,6 +34,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -78,6 +79,10 @@ struct FitOptions {
   /// Terms model selection may use (default all five of kFitTerms).
   std::vector<NoiseTerm> candidates{kFitTerms.begin(), kFitTerms.end()};
   double confidence_level = 0.95;  ///< two-sided level of the intervals, in (0, 1)
+  /// Only points with tau in [tau_min_s, tau_max_s] are fitted (--tau-min / --tau-max): a
+  /// sensor that filters its output departs from every noise term at the shortest taus.
+  double tau_min_s = 0;
+  double tau_max_s = std::numeric_limits<double>::infinity();
 };
 
 /// One parameter of one channel, in SI (units: noise_model.hpp).
@@ -109,6 +114,12 @@ struct ChannelFit {
   double bic = 0;
   int iterations = 0;
   int points = 0;  ///< AVAR points used
+  /// Joint fit: goodness of fit. dof = points - terms kept; p_value = P(chi2_dof > chi_squared)
+  /// (near 0: no model of these terms describes the curve); misfit_tau_s the tau of the point
+  /// furthest from the model in standard deviations (EDF-based). Slopes: 0, NaN, NaN.
+  int dof = 0;
+  double p_value = std::numeric_limits<double>::quiet_NaN();
+  double misfit_tau_s = std::numeric_limits<double>::quiet_NaN();
 
   /// The parameter of `term` (Error if absent from `parameters`).
   const ParameterEstimate& parameter(NoiseTerm term) const;
@@ -127,6 +138,11 @@ struct NoiseFit {
 /// remain (or fewer than the forced model's terms + 1), the source is invalid (tau0 not > 0,
 /// N < 3), a point's m does not match its tau, or the confidence level is not in (0, 1).
 NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const FitOptions& options);
+
+/// The p value below which a joint fit is reported as not describing its curve.
+inline constexpr double kMisfitPValue = 1e-3;
+/// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
+std::string misfit_warning(const ChannelFit& fit, const std::string& channel);
 
 /// Fewest usable AVAR points a fit accepts.
 inline constexpr int kMinFitPoints = 4;
