@@ -175,13 +175,25 @@ TEST_CASE("format names parse and an empty conversion cannot be exported") {
   CHECK_THROWS_AS(export_filter_config(empty, ExportFormat::json), Error);
 }
 
-TEST_CASE("YAML numbers always carry a decimal point (PyYAML reads 1e-05 as a string)") {
+namespace {
+
+/// A gyro triad alone at 100 Hz with white noise 2e-4 rad/s/sqrt(Hz) and the bias term that
+/// `add_bias` sets, its bias stability taken as reached after `t_ref_s`.
+template <class AddBias>
+DiscreteNoise gyro_at_100hz(AddBias add_bias, double t_ref_s = kDefaultReferenceTime) {
   NoiseTerms g;
   g.white = 2e-4;
-  g.rate_random_walk = 1e-5;
+  add_bias(g);
   ConvertOptions o;
   o.rate_hz = 100;
-  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "yaml");
+  o.t_ref_s = t_ref_s;
+  return convert_noise({uniform_triad(Sensor::gyro, g)}, o, "gyro at 100 Hz");
+}
+
+}  // namespace
+
+TEST_CASE("YAML numbers always carry a decimal point (PyYAML reads 1e-05 as a string)") {
+  const DiscreteNoise noise = gyro_at_100hz([](NoiseTerms& g) { g.rate_random_walk = 1e-5; });
   for (const ExportFormat f : {ExportFormat::kalibr, ExportFormat::openvins}) {
     const std::string text = export_filter_config(noise, f);
     CHECK(text.find("gyroscope_random_walk: 1.0e-05") != std::string::npos);
@@ -191,11 +203,8 @@ TEST_CASE("YAML numbers always carry a decimal point (PyYAML reads 1e-05 as a st
 }
 
 TEST_CASE("files a filter cannot load say what is missing") {
-  NoiseTerms g;
-  g.white = 2e-4;  // gyro white noise only: no accelerometer, no random walk
-  ConvertOptions o;
-  o.rate_hz = 100;
-  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "gyro only");
+  // Gyro white noise only: no accelerometer, no random walk.
+  const DiscreteNoise noise = gyro_at_100hz([](NoiseTerms&) {});
   CHECK(missing_filter_keys(noise, ExportFormat::kalibr) ==
         std::vector<std::string>{"accelerometer_noise_density", "accelerometer_random_walk",
                                  "gyroscope_random_walk"});
@@ -208,13 +217,8 @@ TEST_CASE("files a filter cannot load say what is missing") {
 }
 
 TEST_CASE("a bias random walk made from a bias stability is named a rule of thumb in the file") {
-  NoiseTerms g;
-  g.white = 2e-4;
-  g.bias_instability = 1e-5;
-  ConvertOptions o;
-  o.rate_hz = 100;
-  o.t_ref_s = 50;
-  const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "stability");
+  const DiscreteNoise noise =
+      gyro_at_100hz([](NoiseTerms& g) { g.bias_instability = 1e-5; }, 50);
   for (const ExportFormat f : {ExportFormat::kalibr, ExportFormat::vins_fusion, ExportFormat::px4,
                                ExportFormat::gtsam}) {
     CHECK(export_filter_config(noise, f).find("rule of thumb") != std::string::npos);
