@@ -22,7 +22,7 @@ struct ConvertArguments {
   std::string noise_density;
   std::string bias_stability;
   std::string random_walk;
-  std::string sensor = "gyro";
+  std::string sensor;  // "" : from the typed terms' units
   std::string rate;
   std::string bias_model = "rw";
   std::string tref = "100 s";
@@ -34,6 +34,33 @@ struct ConvertArguments {
   std::string output;
   bool force = false;
 };
+
+/// --sensor when given; otherwise the sensor whose dimension the first typed term's unit has
+/// ("70 ug/sqrt(Hz)" is an accelerometer's), gyro when none tells (the terms' own parsing then
+/// says what was expected).
+Sensor typed_sensor(const ConvertArguments& args) {
+  if (args.sensor == "gyro") return Sensor::gyro;
+  if (args.sensor == "accel") return Sensor::accel;
+  if (!args.sensor.empty()) {
+    throw Error("--sensor: found \"" + args.sensor + "\", expected gyro or accel");
+  }
+  for (const std::string* text : {&args.noise_density, &args.bias_stability, &args.random_walk}) {
+    if (text->empty()) continue;
+    try {
+      const Dimension d = parse_quantity(*text).dimension;
+      if (d == dim::angle_random_walk || d == dim::angular_rate || d == dim::gyro_rate_random_walk) {
+        return Sensor::gyro;
+      }
+      if (d == dim::velocity_random_walk || d == dim::acceleration ||
+          d == dim::accel_rate_random_walk) {
+        return Sensor::accel;
+      }
+    } catch (const UnitError&) {
+      // Malformed: reported with the option's name when the term itself is parsed.
+    }
+  }
+  return Sensor::gyro;
+}
 
 /// A time or rate option: "100 s", "100s", "2 min", or a bare number in `bare_unit`.
 double quantity_option(const std::string& text, const Dimension& d, const char* option,
@@ -90,10 +117,7 @@ void run_convert(const ConvertArguments& args) {
                                   "random walk: nothing to convert");
     }
   } else {
-    Sensor sensor;
-    if (args.sensor == "gyro") sensor = Sensor::gyro;
-    else if (args.sensor == "accel") sensor = Sensor::accel;
-    else throw Error("--sensor: found \"" + args.sensor + "\", expected gyro or accel");
+    const Sensor sensor = typed_sensor(args);
     const bool gyro = sensor == Sensor::gyro;
     NoiseTerms terms;
     TriadNoise t;
@@ -170,8 +194,8 @@ void add_convert_command(CLI::App& app) {
                       "in-run bias stability (ADEV floor), e.g. \"3 deg/h\" or \"0.05 mg\"");
   command->add_option("--random-walk", args->random_walk,
                       "rate random walk K, e.g. \"0.02 deg/h/sqrt(h)\"");
-  command->add_option("--sensor", args->sensor, "gyro | accel (for the typed terms)")
-      ->capture_default_str();
+  command->add_option("--sensor", args->sensor,
+                      "gyro | accel (for the typed terms; default: the one their units name)");
   command->add_option("--rate", args->rate, "filter / IMU rate, e.g. 200 or \"200 Hz\"");
   command->add_option("--bias-model", args->bias_model, "rw (random walk) | gm (Gauss-Markov)")
       ->capture_default_str();

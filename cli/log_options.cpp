@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "sigmatau/error.hpp"
@@ -170,6 +171,22 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
                  "skip)\n",
                  args.input.c_str(), static_cast<long long>(timing.rows_skipped_nonfinite),
                  timing.rows_skipped_nonfinite == 1 ? "" : "s");
+  }
+  if (timing.has_time && timing.rate_hz > 0) {
+    // --rate wins over the stamps; say so when they disagree (more than 1 %).
+    if (args.rate_hz && std::abs(*args.rate_hz / timing.rate_hz - 1) > 0.01) {
+      std::fprintf(stderr,
+                   "sigmatau: warning: %s: --rate %.6g Hz is used, but the time stamps measure "
+                   "%.6g Hz\n",
+                   args.input.c_str(), *args.rate_hz, timing.rate_hz);
+    }
+    // Stamps in ms or us read as seconds give a rate far below any IMU's.
+    if (!args.rate_hz && args.time_unit == "s" && timing.rate_hz < 1) {
+      std::fprintf(stderr,
+                   "sigmatau: note: %s: the time stamps, read in seconds, measure %.6g Hz; if "
+                   "they are in ms, us or ns, give --time-unit\n",
+                   args.input.c_str(), timing.rate_hz);
+    }
   }
 }
 

@@ -59,3 +59,13 @@ sigmatau_cli_test(NAME cli_adev_edf_discrete_out_of_core EXIT 0
   STDOUT "0\\.1 +1 +1999 +0 +1333 "
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --taus 0.1
        --edf discrete --memory 1K)
+
+# Time stamps and --rate: a rate that overrides stamps measuring another is warned about, and
+# stamps in ms read as seconds (0.1 Hz) get a hint to give --time-unit.
+sigmatau_cli_test(NAME cli_adev_rate_overrides_stamps EXIT 0
+  STDERR "--rate 200 Hz is used, but the time stamps measure 100 Hz"
+  ARGS adev ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz --time-column t --unit deg/s
+       --rate 200 --columns gx)
+sigmatau_cli_test(NAME cli_adev_stamps_in_ms_hint EXIT 0
+  STDERR "measure 0.1 Hz; if they are in ms, us or ns, give --time-unit"
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/stamps_ms_100Hz.csv --time-column t_ms --unit deg/s)

@@ -49,3 +49,8 @@ sigmatau_cli_test(NAME cli_convert_incomplete_warns EXIT 0
   ARGS convert --fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json --rate 200 --to kalibr)
 sigmatau_cli_test(NAME cli_convert_two_sources EXIT 2 STDERR "give one of"
   ARGS convert --fit ${PROJECT_SOURCE_DIR}/tests/data/check/fit_pass.json --spec tdk_mpu6050 --rate 200)
+# Typed terms without --sensor: the sensor their unit names (an accelerometer's density here).
+sigmatau_cli_test(NAME cli_convert_sensor_from_unit EXIT 0 STDOUT "^accel: f_s = 100 Hz"
+  ARGS convert --noise-density "70 ug/sqrt(Hz)" --rate 100)
+sigmatau_cli_test(NAME cli_convert_sensor_told_wins EXIT 2 STDERR "--noise-density: expected angle"
+  ARGS convert --noise-density "70 ug/sqrt(Hz)" --sensor gyro --rate 100)
