@@ -335,6 +335,16 @@ TEST_CASE("a slope line is read over one run of points: a stray identification i
     const NoiseFit g = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
     SIGMATAU_CHECK_REL(g.slopes->parameter(NoiseTerm::rate_random_walk).value, 1e-3, 0.07);
   }
+  SUBCASE("a white-PM point mid-curve is not quantization: Q's region starts at the first tau") {
+    curve.points[6].confidence.noise.alpha = 2;  // 0.64 s, in the white-noise region
+    const NoiseFit g = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
+    CHECK_FALSE(g.slopes->parameter(NoiseTerm::quantization).in_model);
+    // ... while the same identification at the first points is Q's run.
+    curve.points[0].confidence.noise.alpha = 2;
+    curve.points[1].confidence.noise.alpha = 2;
+    const NoiseFit h = fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, o);
+    CHECK(h.slopes->parameter(NoiseTerm::quantization).in_model);
+  }
 }
 
 TEST_CASE("bad inputs are clear errors") {

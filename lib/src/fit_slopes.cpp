@@ -4,7 +4,8 @@
 //   dev_j, tau_j, nu_j   OADEV point, its tau [s] and EDF;  alpha_j its identified noise
 //   s, tau_r, c          the term's ADEV slope, read-off tau and coefficient (noise_model read_off)
 //   J                    the points where the term's slope holds: the longest run of
-//                        consecutive points identified alpha 2 or 1 (Q, ADEV slope -1), 0 (N,
+//                        consecutive points identified alpha 2 or 1 (Q, ADEV slope -1; the run
+//                        from the first tau only), 0 (N,
 //                        -1/2), -1 (B, 0), -2 (K, +1/2); R (+1): alpha -2 points whose local
 //                        ADEV slope exceeds kRampSlope
 // A slope holds over a range of tau, so J is one run: noise identification at a low-EDF point
@@ -57,7 +58,15 @@ bool on_line(NoiseTerm term, const std::vector<AvarPoint>& p, std::size_t j) {
 
 /// The longest run of consecutive indices in `on` (ascending). On a tie, the run at the end of
 /// the curve where the term lives: the last for the large-tau terms (K, R), the first otherwise.
+/// Quantization's AVAR (3 Q^2 / tau^2) falls fastest of all terms, so where it dominates
+/// anywhere it dominates at the first tau: Q's run is the one that starts there, or none (a
+/// lone white-PM point mid-curve read Q 50x too large on a real HiPNUC gyro).
 std::vector<std::size_t> longest_run(const std::vector<std::size_t>& on, NoiseTerm term) {
+  if (term == NoiseTerm::quantization) {
+    std::size_t end = 0;
+    while (end < on.size() && on[end] == end) ++end;
+    return {on.begin(), on.begin() + static_cast<std::ptrdiff_t>(end)};
+  }
   const bool prefer_last = term == NoiseTerm::rate_random_walk || term == NoiseTerm::rate_ramp;
   std::size_t best_start = 0, best_length = 0;
   for (std::size_t start = 0; start < on.size();) {
