@@ -1,6 +1,7 @@
 // Triads for the filter conversion from a noise-term fit result.
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -30,6 +31,15 @@ TEST_CASE("a fit result becomes triads; a bias term kept on some axes gets its b
   CHECK(accel.sensor == Sensor::accel);
   CHECK(*accel.axes[2].rate_random_walk == 4e-5);
   CHECK(*accel.axes[0].white == 1e-3);  // az alone: copied to x and y
+
+  // The filter files say that a bound stands in: it is not a measured value.
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const std::string kalibr =
+      export_filter_config(convert_noise(triads, o, "fit.json"), ExportFormat::kalibr);
+  CHECK(kalibr.find("# gyro bias: B / K from the noise-term fit; B on axis y: not detected, its "
+                    "upper bound used") != std::string::npos);
+  CHECK(kalibr.find("# accel bias:") == std::string::npos);  // accel K measured on its axis
 }
 
 TEST_CASE("an analyze results.json is read through its fit section") {

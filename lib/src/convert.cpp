@@ -189,6 +189,7 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
   const double f = options.inflate;
   const std::string sensor(to_string(triad.sensor));
   TriadDiscrete out;
+  out.bias_origin = triad.bias_origin;
   out.sensor = triad.sensor;
 
   bool any_white = false;

@@ -152,6 +152,9 @@ struct BiasDiscrete {
 /// One converted triad.
 struct TriadDiscrete {
   Sensor sensor = Sensor::gyro;
+  /// Where the bias came from (TriadNoise::bias_origin), for the files' headers: e.g. a term
+  /// the fit did not detect, written as its upper bound.
+  std::string bias_origin;
   std::optional<WhiteDiscrete> white;
   std::optional<BiasDiscrete> bias;
 };
