@@ -71,8 +71,10 @@ std::string_view term_name(NoiseTerm term, Sensor sensor) {
     case NoiseTerm::quantization: return "quantization";
     case NoiseTerm::white: return sensor == Sensor::gyro ? "angle random walk" : "velocity random walk";
     case NoiseTerm::bias_instability: return "bias instability";
-    case NoiseTerm::rate_random_walk: return "rate random walk";
-    default: return "rate ramp";
+    // IEEE 1293 names an accelerometer's K and R after acceleration, not rate.
+    case NoiseTerm::rate_random_walk:
+      return sensor == Sensor::gyro ? "rate random walk" : "acceleration random walk";
+    default: return sensor == Sensor::gyro ? "rate ramp" : "acceleration ramp";
   }
 }
 
@@ -171,7 +173,7 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
   }
   out << "  (" << ci * 100 << "% intervals)\n";
   char line[200];
-  std::snprintf(line, sizeof line, "%-2s %-22s %13s %13s %13s  %s\n", "", "term", "ci_low", "value",
+  std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13s  %s\n", "", "term", "ci_low", "value",
                 "ci_high", "unit");
   out << line;
   for (const auto& p : fit.parameters) {
@@ -180,10 +182,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const std::string sym(term_symbol(p.term));
     const std::string nm(term_name(p.term, sensor));
     if (p.in_model) {
-      std::snprintf(line, sizeof line, "%-2s %-22s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
+      std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
                     p.ci_low * f, p.value * f, p.ci_high * f, u.sheet);
     } else {
-      std::snprintf(line, sizeof line, "%-2s %-22s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
+      std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
                     sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, u.sheet);
     }
     out << line;
@@ -216,7 +218,7 @@ std::string render_table(const std::string& input, const std::vector<Channel>& c
       const TermUnits u = units_of(e.term, t.sensor);
       const double f = convert(1.0, u.si, u.sheet);
       char line[200];
-      std::snprintf(line, sizeof line, "%-2s %-22s mean %12.5g  worst %12.5g (%s)  %s",
+      std::snprintf(line, sizeof line, "%-2s %-24s mean %12.5g  worst %12.5g (%s)  %s",
                     std::string(term_symbol(e.term)).c_str(),
                     std::string(term_name(e.term, t.sensor)).c_str(), e.mean * f, e.worst * f,
                     e.worst_channel.c_str(), u.sheet);
