@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,7 +43,18 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
   command.add_option("--time-unit", args.time_unit, "unit of the time column: s|ms|us|ns")
       ->capture_default_str();
   command.add_option("--rate", args.rate_hz,
-                     "sample rate [Hz] (default: measured from the time column)");
+                     "sample rate [Hz], e.g. 100 or \"100 Hz\" (default: measured from the time column)")
+      ->transform(
+          [](std::string text) {
+            // "100 Hz" and "100Hz" as convert and data sheets write it: the unit is dropped.
+            while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+            if (text.size() > 2 && (text.ends_with("Hz") || text.ends_with("hz"))) {
+              text.resize(text.size() - 2);
+              while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+            }
+            return text;
+          },
+          "", "Hz");
   command.add_option("--kind", args.kind,
                      "what the values are: rate (e.g. deg/s, m/s^2), increment (delta angle or "
                      "velocity per sample), phase (integrated angle, or clock phase in s)")

@@ -69,3 +69,6 @@ sigmatau_cli_test(NAME cli_adev_rate_overrides_stamps EXIT 0
 sigmatau_cli_test(NAME cli_adev_stamps_in_ms_hint EXIT 0
   STDERR "measure 0.1 Hz; if they are in ms, us or ns, give --time-unit"
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/stamps_ms_100Hz.csv --time-column t_ms --unit deg/s)
+# --rate takes "10 Hz" as convert does.
+sigmatau_cli_test(NAME cli_adev_rate_with_unit EXIT 0 STDOUT "2000 samples at 10 Hz"
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --columns 1 --rate "10 Hz")
