@@ -230,9 +230,12 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
     if (channel.role) channel.input_unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
     if (!channel.input_unit.empty()) {
       const bool gyro = channel.role->sensor == Sensor::gyro;
-      channel.to_si = parse_unit_as(channel.input_unit, expected_dimension(gyro),
-                                    gyro ? "--gyro-unit" : "--accel-unit")
-                          .factor;
+      // The option the unit came from: --gyro-unit / --accel-unit, or --unit for both.
+      const bool own = !(gyro ? args.gyro_unit : args.accel_unit).empty();
+      const std::string field = own ? (gyro ? "--gyro-unit" : "--accel-unit")
+                                    : "--unit (applied to the " + std::string(gyro ? "gyro" : "accelerometer") +
+                                          " column " + channel.name + "; give --gyro-unit and --accel-unit apart)";
+      channel.to_si = parse_unit_as(channel.input_unit, expected_dimension(gyro), field).factor;
     }
     chosen.push_back(std::move(channel));
   }

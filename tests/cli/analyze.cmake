@@ -34,3 +34,10 @@ sigmatau_cli_test(NAME cli_analyze_bad_trim EXIT 2 STDERR "--trim"
 sigmatau_cli_test(NAME cli_analyze_bad_gyro_unit EXIT 2 STDERR "--gyro-unit"
   NO_FILE ${analyze_dir}/bad_unit
   ARGS analyze ${example} --time-column t --gyro-unit m/s^2 -o ${analyze_dir}/bad_unit)
+
+# One --unit for a log with both sensors: the error names --unit (the option given), the column
+# it failed on and the way out, not --accel-unit (an option the user did not give).
+sigmatau_cli_test(NAME cli_analyze_one_unit_two_sensors EXIT 2
+  STDERR "--unit \\(applied to the accelerometer column ax; give --gyro-unit and --accel-unit apart\\)"
+  ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
+       -o ${analyze_dir}/one_unit)
