@@ -1,5 +1,7 @@
-// `sigmatau check --spec SHEET RESULT.json`: pass / marginal / fail against a data sheet.
-// Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line).
+// `sigmatau check --spec SHEET RESULT.json`: pass / marginal / fail against a data sheet, and
+// inconclusive for a term the fit did not detect whose upper bound exceeds the limit.
+// Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line);
+// an inconclusive item is not a failure.
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -65,7 +67,8 @@ void run_check(const CheckArguments& args) {
   } else {
     out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
         << args.result << "; pass: upper bound within the limit, marginal: estimate within but "
-        << "bound not, fail: estimate beyond\n";
+        << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
+        << "beyond (a longer log is needed)\n";
     char line[512];
     std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8s %8s\n", "parameter",
                   "verdict", "measured", "upper bound", "limit", "margin", "upper");
@@ -73,6 +76,14 @@ void run_check(const CheckArguments& args) {
     for (const auto& item : items) {
       if (item.verdict == Verdict::not_specified) {
         std::snprintf(line, sizeof line, "%-36s %-12s\n", label(item).c_str(), "not specified");
+      } else if (!item.measured.detected) {
+        // Only a bound: no estimate and no estimate margin to show.
+        std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8s %8.3f\n",
+                      label(item).c_str(), std::string(to_string(item.verdict)).c_str(),
+                      "not detected",
+                      ("< " + in_printed_unit(item.compared_upper, item.limit_unit)).c_str(),
+                      (item.limit_text + (item.limit_is_typical ? " (typ)" : "")).c_str(), "-",
+                      item.margin_upper);
       } else {
         std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8.3f %8.3f%s\n",
                       label(item).c_str(), std::string(to_string(item.verdict)).c_str(),
@@ -83,7 +94,17 @@ void run_check(const CheckArguments& args) {
       }
       out << line;
     }
-    out << (any_failed(items) ? "RESULT: FAIL\n" : "RESULT: no check failed\n");
+    int inconclusive = 0;
+    for (const auto& item : items) inconclusive += item.verdict == Verdict::inconclusive;
+    if (any_failed(items)) {
+      out << "RESULT: FAIL\n";
+    } else if (inconclusive > 0) {
+      out << "RESULT: no check failed; " << inconclusive
+          << " inconclusive (terms not detected whose upper bound exceeds the limit: a longer log "
+             "is needed to decide them)\n";
+    } else {
+      out << "RESULT: no check failed\n";
+    }
   }
   if (args.output.empty()) {
     std::cout << out.str();
@@ -99,7 +120,8 @@ void add_check_command(CLI::App& app) {
   auto args = std::make_shared<CheckArguments>();
   CLI::App* command = app.add_subcommand(
       "check", "Compare measured parameters (fit, calibrate or analyze result) with a data sheet: "
-               "pass / marginal / fail; exit 1 when any check fails");
+               "pass / marginal / fail (inconclusive: a term not detected whose upper bound "
+               "exceeds the limit); exit 1 when any check fails");
   command->add_option("--spec", args->spec, "data sheet: a YAML file or a name from `sigmatau specs list`")
       ->required();
   command->add_option("RESULT", args->result, "a sigmatau fit / calibrate / analyze JSON result")

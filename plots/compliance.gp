@@ -1,5 +1,7 @@
 # sigmatau compliance chart: measured / data-sheet limit per parameter with its confidence
-# interval, coloured by verdict (pass green, marginal amber, fail red); the limit is the line at 1.
+# interval, coloured by verdict (pass green, marginal amber, fail red, inconclusive grey); the
+# limit is the line at 1. A term the fit did not detect is one point at upper bound / limit
+# (its label says so).
 # Variables set by sigmatau (gnuplot -e): datafile, outfile, term, title_text, nrows.
 # datafile columns: row ratio ratio_low ratio_high color(0xRRGGBB) "label"
 
@@ -15,7 +17,7 @@ if (term eq 'svg') {
 set output outfile
 set title title_text noenhanced
 set logscale x
-set xlabel 'measured / data-sheet limit (upper end of the bar: upper confidence bound)'
+set xlabel "measured / data-sheet limit\n(bar: confidence interval; a term not detected: its upper bound)" noenhanced
 set yrange [-0.7:nrows-0.3]
 set ytics nomirror
 set grid xtics lc rgb '#dddddd'

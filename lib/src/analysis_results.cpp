@@ -278,7 +278,16 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
           {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
       for (const auto& [term, quantity] : kMeasured) {
         const auto& p = joint.parameter(term);
-        if (p.in_model) measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
+        if (p.in_model) {
+          measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
+        } else {
+          // Left out by the fit: still checked against the sheet, by its upper bound.
+          measured.push_back({.sensor = channel.role->sensor,
+                              .quantity = quantity,
+                              .axis = axis,
+                              .detected = false,
+                              .upper_bound = p.upper_bound});
+        }
       }
     } catch (const Error& e) {
       warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sigmatau/error.hpp"
 
@@ -46,8 +47,15 @@ std::vector<Candidate> candidates(MeasuredQuantity q, DensityConvention conventi
   return {};
 }
 
-/// The estimate and its upper bound as compared with the limit.
+/// The estimate and its upper bound as compared with the limit. A term not detected has no
+/// estimate (NaN) and its one-sided upper bound in place of the interval's upper end.
 std::pair<double, double> as_compared(const MeasuredParameter& p) {
+  if (!p.detected) {
+    const double bound = std::abs(p.upper_bound);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (p.quantity == MeasuredQuantity::bias_instability) return {nan, kFlickerFloorFactor * bound};
+    return {nan, bound};
+  }
   switch (p.quantity) {
     case MeasuredQuantity::bias_instability:
       return {kFlickerFloorFactor * p.value, kFlickerFloorFactor * p.ci_high};
@@ -86,6 +94,7 @@ std::string_view to_string(Verdict verdict) {
     case Verdict::pass: return "pass";
     case Verdict::marginal: return "marginal";
     case Verdict::fail: return "fail";
+    case Verdict::inconclusive: return "inconclusive";
     case Verdict::not_specified: return "not specified";
   }
   return "?";
@@ -116,7 +125,13 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
         if (!(item.limit_si > 0)) continue;  // a zero limit cannot be a ratio
         item.margin = item.compared / item.limit_si;
         item.margin_upper = item.compared_upper / item.limit_si;
-        if (!(item.compared <= item.limit_si)) {
+        if (!p.detected) {
+          // Only a bound: within the limit it shows the term is small enough; beyond it the log
+          // cannot tell (a longer one would), which is not evidence of a failure. A NaN bound
+          // is inconclusive too.
+          item.rule += "; not detected by the fit: its one-sided upper bound against the limit";
+          item.verdict = item.compared_upper <= item.limit_si ? Verdict::pass : Verdict::inconclusive;
+        } else if (!(item.compared <= item.limit_si)) {
           item.verdict = Verdict::fail;  // NaN estimates fail too
         } else if (item.compared_upper <= item.limit_si) {
           item.verdict = Verdict::pass;
@@ -145,13 +160,17 @@ bool any_failed(const std::vector<ComplianceItem>& items) {
 }
 
 std::string overall_verdict(const std::vector<ComplianceItem>& items) {
-  int pass = 0, marginal = 0, fail = 0;
+  int pass = 0, marginal = 0, fail = 0, inconclusive = 0;
   for (const auto& item : items) {
     pass += item.verdict == Verdict::pass;
     marginal += item.verdict == Verdict::marginal;
     fail += item.verdict == Verdict::fail;
+    inconclusive += item.verdict == Verdict::inconclusive;
   }
-  return fail > 0 ? "fail" : marginal > 0 ? "marginal" : pass > 0 ? "all pass" : "nothing to check";
+  if (fail > 0) return "fail";
+  if (marginal > 0) return "marginal";
+  if (inconclusive > 0) return "inconclusive";
+  return pass > 0 ? "all pass" : "nothing to check";
 }
 
 std::string compliance_json(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
@@ -161,18 +180,24 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
     nlohmann::json j = {{"sensor", std::string(to_string(item.measured.sensor))},
                         {"quantity", std::string(to_string(item.measured.quantity))},
                         {"axis", item.measured.axis},
-                        {"value", item.measured.value},
-                        {"ci_low", item.measured.ci_low},
-                        {"ci_high", item.measured.ci_high},
-                        {"verdict", std::string(to_string(item.verdict))}};
+                        {"detected", item.measured.detected}};
+    // The measured side as a fit result gives it: an interval, or only an upper bound.
+    if (item.measured.detected) {
+      j["value"] = item.measured.value;
+      j["ci_low"] = item.measured.ci_low;
+      j["ci_high"] = item.measured.ci_high;
+    } else {
+      j["upper_bound"] = item.measured.upper_bound;
+    }
+    j["verdict"] = std::string(to_string(item.verdict));
     if (item.verdict != Verdict::not_specified) {
       j["spec_field"] = item.spec_field;
       j["limit_text"] = item.limit_text;
       j["limit_is_typical"] = item.limit_is_typical;
       j["limit_si"] = item.limit_si;
-      j["compared"] = item.compared;
+      if (item.measured.detected) j["compared"] = item.compared;
       j["compared_upper"] = item.compared_upper;
-      j["margin"] = item.margin;
+      if (item.measured.detected) j["margin"] = item.margin;
       j["margin_upper"] = item.margin_upper;
       j["rule"] = item.rule;
     }
@@ -228,8 +253,22 @@ void read_fit(const json& doc, const std::string& file, std::vector<MeasuredPara
     for (const auto& [key, quantity] : kTerms) {
       if (!channel["parameters"].contains(key)) continue;
       const json& p = channel["parameters"][key];
-      if (!p.contains("value")) continue;  // an upper bound only: the term was not detected
       const std::string where = file + ": " + name + "." + key;
+      if (!p.contains("value")) {
+        // The fit left the term out and gives only its upper bound: checked by that bound.
+        if (!p.contains("upper_bound")) continue;
+        const json& bound = p["upper_bound"];
+        if (!bound.is_number() && !bound.is_null()) {
+          throw Error(where + ": \"upper_bound\" is not a number");
+        }
+        out.push_back({.sensor = sensor,
+                       .quantity = quantity,
+                       .axis = axis,
+                       .detected = false,
+                       .upper_bound = bound.is_null() ? std::numeric_limits<double>::quiet_NaN()
+                                                      : bound.get<double>()});
+        continue;
+      }
       out.push_back({sensor, quantity, axis, number(p, "value", where), number(p, "ci_low", where),
                      number(p, "ci_high", where)});
     }

@@ -243,7 +243,10 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
     out.precision(10);
     for (std::size_t i = 0; i < plot.rows.size(); ++i) {
       const auto& r = plot.rows[i];
-      const char* color = r.verdict == "pass" ? "0x2ca02c" : r.verdict == "marginal" ? "0xe6a000" : "0xd62728";
+      const char* color = r.verdict == "pass"           ? "0x2ca02c"
+                          : r.verdict == "marginal"     ? "0xe6a000"
+                          : r.verdict == "inconclusive" ? "0x7f7f7f"
+                                                        : "0xd62728";
       std::string label;
       for (char c : r.label) label += (c == '"') ? ' ' : c;
       // Reversed rows so the first item is at the top.

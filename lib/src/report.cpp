@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -268,6 +269,35 @@ DeviationPlot dynamic_plot(const json& channel) {
   return plot;
 }
 
+/// A number of a compliance item, NaN when absent or null (JSON has no NaN).
+double item_number(const json& item, const char* key) {
+  if (!item.contains(key) || !item[key].is_number()) return std::numeric_limits<double>::quiet_NaN();
+  return item[key].get<double>();
+}
+
+/// True when the item's term was not detected (only an upper bound; older files lack the key).
+bool undetected(const json& item) { return !item.value("detected", true); }
+
+/// Said under a compliance table with an inconclusive item.
+constexpr const char* kInconclusiveNote =
+    "Inconclusive: the fit did not detect the term, and its upper bound exceeds the limit, so "
+    "this log can neither pass nor fail it; a longer log bounds it more tightly. A term not "
+    "detected whose bound is within the limit passes.";
+
+bool any_inconclusive(const json& compliance) {
+  for (const auto& item : compliance["items"]) {
+    if (item.value("verdict", "") == "inconclusive") return true;
+  }
+  return false;
+}
+
+/// The "measured / limit" cell of the compliance tables.
+std::string margin_cell(const json& item) {
+  if (item.value("verdict", "") == "not specified") return "";
+  if (undetected(item)) return "not detected (upper bound only)";
+  return item.contains("margin") ? fmt(item_number(item, "margin"), 3) : "";
+}
+
 CompliancePlot compliance_plot(const json& results) {
   CompliancePlot plot;
   plot.title = "Compliance with " + results["compliance"]["spec"].value("part", std::string("data sheet"));
@@ -276,13 +306,20 @@ CompliancePlot compliance_plot(const json& results) {
     if (verdict == "not specified") continue;
     ComplianceRow row;
     row.label = item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", "");
+    row.verdict = verdict;
+    if (undetected(item)) {
+      // Only a bound: one point at bound / limit, said so in the label.
+      row.ratio = row.ratio_low = row.ratio_high = item_number(item, "margin_upper");
+      row.label += " (not detected)";
+      if (std::isfinite(row.ratio)) plot.rows.push_back(row);  // no bound, nothing to draw
+      continue;
+    }
     row.ratio = item["margin"].get<double>();
     row.ratio_high = item["margin_upper"].get<double>();
     const double value = item["value"].get<double>();
     const double low = item["ci_low"].get<double>();
     row.ratio_low = value != 0 ? row.ratio * std::abs(low / value) : row.ratio;
     if (row.ratio_low > row.ratio) row.ratio_low = row.ratio;
-    row.verdict = verdict;
     plot.rows.push_back(row);
   }
   return plot;
@@ -350,6 +387,7 @@ std::string verdict_class(const std::string& verdict) {
   if (verdict == "pass") return "pass";
   if (verdict == "marginal") return "marginal";
   if (verdict == "fail") return "fail";
+  if (verdict == "inconclusive") return "inconclusive";
   return "na";
 }
 
@@ -398,10 +436,11 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
     for (const auto& item : results["compliance"]["items"]) {
       md << "| " << item.value("sensor", "") << " " << spaced(item.value("quantity", "")) << " "
          << item.value("axis", "") << " | " << item.value("verdict", "") << " | "
-         << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << " | "
-         << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << " | "
+         << margin_cell(item) << " | "
+         << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << " | "
          << item.value("limit_text", "") << " |\n";
     }
+    if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
   if (!warnings.empty()) {
     md << "\n## Warnings\n";
@@ -415,7 +454,7 @@ constexpr const char* kStyle = R"css(
 body{font-family:Helvetica,Arial,sans-serif;max-width:1150px;margin:2em auto;padding:0 1em;color:#222}
 h1{font-size:1.8em;margin-bottom:.2em}h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:1.6em}
 table{border-collapse:collapse;margin:.6em 0;font-size:.95em}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:left}
-th{background:#f3f3f3}.pass{background:#dff3df}.marginal{background:#fff1cc}.fail{background:#f8d7d7}.na{color:#888}
+th{background:#f3f3f3}.pass{background:#dff3df}.marginal{background:#fff1cc}.fail{background:#f8d7d7}.inconclusive{background:#e4e8f0}.na{color:#888}
 .verdict{font-size:1.3em;font-weight:bold;padding:.3em .8em;display:inline-block;border-radius:4px}
 .plot svg{width:100%;height:auto}pre{background:#f7f7f7;padding:.8em;overflow-x:auto;font-size:.85em}
 .muted{color:#666;font-size:.9em})css";
@@ -436,7 +475,10 @@ std::string report_html(const json& results, const PlotSet& plots,
     const std::string verdict = results["compliance"].value("verdict", "");
     h << "<p>Data sheet " << html_escape(results["compliance"]["spec"].value("manufacturer", "")) << " "
       << html_escape(results["compliance"]["spec"].value("part", "")) << ": <span class=\"verdict "
-      << verdict_class(verdict == "all pass" ? "pass" : verdict == "fail" ? "fail" : "marginal")
+      << verdict_class(verdict == "all pass"       ? "pass"
+                       : verdict == "fail"         ? "fail"
+                       : verdict == "inconclusive" ? "inconclusive"
+                                                   : "marginal")
       << "\">" << html_escape(verdict) << "</span></p>\n";
   }
   h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th><th>noise density (PSD)</th></tr>\n";
@@ -464,13 +506,15 @@ std::string report_html(const json& results, const PlotSet& plots,
       const std::string verdict = item.value("verdict", "");
       h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
         << html_escape(item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", ""))
-        << "</td><td>" << html_escape(verdict) << "</td><td>"
-        << (item.contains("margin") ? fmt(item["margin"].get<double>(), 3) : "") << "</td><td>"
-        << (item.contains("margin_upper") ? fmt(item["margin_upper"].get<double>(), 3) : "") << "</td><td>"
+        << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
+        << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << "</td><td>"
         << html_escape(item.value("limit_text", "")) << (item.value("limit_is_typical", false) ? " (typ)" : "")
         << "</td><td>" << html_escape(item.value("rule", "")) << "</td></tr>\n";
     }
     h << "</table>\n";
+    if (any_inconclusive(results["compliance"])) {
+      h << "<p class=\"muted\">" << html_escape(kInconclusiveNote) << "</p>\n";
+    }
     if (plots.svgs.count("compliance")) h << "<div class=\"plot\">" << plots.svgs.at("compliance") << "</div>\n";
   }
 

@@ -6,6 +6,10 @@
 ///   marginal  the estimate is within the limit but its upper bound is not,
 ///   fail      the estimate exceeds the limit,
 ///   not specified  the sheet prints no value for it.
+/// A noise term the fit left out (not detected: the data gave only a one-sided upper bound) is
+/// still checked, by its bound alone: pass when the bound is within the limit (the term is at
+/// most that), else inconclusive (the log cannot decide; a longer one is needed). A bound alone
+/// never fails.
 /// The limit is the printed max, else the typical value (said so in the item: a typical value
 /// is a population 1-sigma figure, not a guarantee; THEORY.md 8.3).
 ///
@@ -39,17 +43,26 @@ enum class MeasuredQuantity {
 };
 std::string_view to_string(MeasuredQuantity quantity);
 
-/// One measured value with its confidence interval (SI).
+/// One measured value with its confidence interval (SI), or, for a noise term the fit did not
+/// keep, only its one-sided upper bound.
 struct MeasuredParameter {
   Sensor sensor = Sensor::gyro;
   MeasuredQuantity quantity = MeasuredQuantity::white_noise;
   std::string axis;  ///< "x", "y", "z", or "xy", "xz", ... for cross-axis terms
-  double value = 0;
-  double ci_low = 0;
-  double ci_high = 0;
+  double value = 0;    ///< estimate (SI); unused when !detected
+  double ci_low = 0;   ///< lower confidence bound (SI); unused when !detected
+  double ci_high = 0;  ///< upper confidence bound (SI); unused when !detected
+  /// false: the fit left the term out (the data do not support it) and only `upper_bound` is
+  /// known (fit.hpp, ParameterEstimate::in_model == false).
+  bool detected = true;
+  /// One-sided upper bound on the term when !detected (SI, the unit of `value`; NaN when the
+  /// fit could not bound it).
+  double upper_bound = 0;
 };
 
-enum class Verdict { pass, marginal, fail, not_specified };
+/// pass / marginal / fail / not specified as in the file comment; inconclusive: the term was not
+/// detected and its upper bound exceeds the limit.
+enum class Verdict { pass, marginal, fail, inconclusive, not_specified };
 std::string_view to_string(Verdict verdict);
 
 /// The verdict on one measured parameter against one data-sheet field.
@@ -61,9 +74,11 @@ struct ComplianceItem {
   std::string limit_unit;       ///< the printed unit ("deg/s"), for showing values like the sheet
   bool limit_is_typical = false;
   double limit_si = 0;          ///< the limit in the units of `compared` (SI)
-  double compared = 0;          ///< the measured estimate as compared (e.g. |b|, 0.664 B) [SI]
-  double compared_upper = 0;    ///< its upper confidence bound as compared [SI]
-  double margin = 0;            ///< compared / limit (< 1 is within)
+  double compared = 0;          ///< the measured estimate as compared (e.g. |b|, 0.664 B) [SI];
+                                ///< NaN when the term was not detected
+  double compared_upper = 0;    ///< its upper confidence bound as compared [SI] (not detected:
+                                ///< the one-sided upper bound as compared, e.g. 0.664 B_upper)
+  double margin = 0;            ///< compared / limit (< 1 is within); NaN when not detected
   double margin_upper = 0;      ///< compared_upper / limit
   std::string rule;             ///< one line: how the two were put on the same footing
 };
@@ -72,8 +87,9 @@ struct ComplianceOptions {
   DensityConvention convention = DensityConvention::two_sided;
 };
 
-/// Checks every parameter against `sheet`. Parameters of a sensor the sheet lacks, or with no
-/// matching field, come back as not_specified.
+/// Checks every parameter against `sheet`, undetected ones by their upper bound (pass or
+/// inconclusive). Parameters of a sensor the sheet lacks, or with no matching field, come back
+/// as not_specified.
 std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter>& measured,
                                              const DataSheet& sheet,
                                              const ComplianceOptions& options = {});
@@ -82,13 +98,16 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
 bool any_failed(const std::vector<ComplianceItem>& items);
 
 /// The overall verdict: "fail" when any item failed, else "marginal" when any is marginal, else
-/// "all pass" when something passed, else "nothing to check".
+/// "inconclusive" when any is inconclusive, else "all pass" when something passed, else
+/// "nothing to check".
 std::string overall_verdict(const std::vector<ComplianceItem>& items);
 
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
-/// "verdict","failed","items":[{"sensor","quantity","axis","value","ci_low","ci_high","verdict",
-/// and when specified "spec_field","limit_text","limit_is_typical","limit_si","compared",
-/// "compared_upper","margin","margin_upper","rule"}]}. Written by `check --format json` and into
+/// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
+/// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict", and when
+/// specified "spec_field","limit_text","limit_is_typical","limit_si","compared_upper",
+/// "margin_upper","rule", plus "compared","margin" when detected}]}. "verdict" is one of "pass",
+/// "marginal", "fail", "inconclusive", "not specified". Written by `check --format json` and into
 /// analyze's results.json.
 std::string compliance_json(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
                             const ComplianceOptions& options);
@@ -96,7 +115,8 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
 /// Reads measured parameters from a sigmatau result file's JSON text: a `fit` result
 /// ({"channels":[{"name","quantity","parameters":{"N":{...},"B":...,"K":...}}]}), a `calibrate`
 /// result ({"accelerometer":{...},"gyroscope":{...}}), or an `analyze` results.json (which holds
-/// both under "fit" and "calibration"). Channel names gx/gy/gz and ax/ay/az (or quantity
+/// both under "fit" and "calibration"). A fit term given only as "upper_bound" is read as not
+/// detected (a null bound, written for NaN, as an unknown bound). Channel names gx/gy/gz and ax/ay/az (or quantity
 /// angular_rate / specific_force with a trailing x/y/z) give sensor and axis. Throws Error
 /// naming `file` on any other shape.
 std::vector<MeasuredParameter> measured_parameters_from_json(std::string_view json_text,

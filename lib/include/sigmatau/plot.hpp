@@ -44,7 +44,7 @@ struct ComplianceRow {
   double ratio = 0;        ///< estimate / limit
   double ratio_low = 0;    ///< lower bound / limit
   double ratio_high = 0;   ///< upper bound / limit
-  std::string verdict;     ///< "pass" | "marginal" | "fail"
+  std::string verdict;     ///< "pass" | "marginal" | "fail" | "inconclusive"
 };
 struct CompliancePlot {
   std::string title;
