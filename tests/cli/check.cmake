@@ -10,3 +10,43 @@ sigmatau_cli_test(NAME cli_check_unknown_spec EXIT 2 STDERR "no_such_imu"
   ARGS check --spec no_such_imu ${check_data}/fit_pass.json)
 sigmatau_cli_test(NAME cli_check_not_a_result EXIT 2 STDERR "not a sigmatau"
   ARGS check --spec adi_adis16465 ${check_data}/not_a_result.json)
+
+# A term the fit did not keep is still checked, by its upper bound (regression: the data-sheet
+# item used to vanish). A seeded white-noise-only log (STIM300 gyro ARW 0.15 deg/sqrt(h), bias
+# instability 0.5 deg/h): B is not detected. 1 h bounds 0.664 B at 0.62-0.65 x the sheet's
+# 0.5 deg/h (pass); 5 min only at 2.2 x (inconclusive, not a fail: exit 0).
+set(check_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_check_undetected)
+file(MAKE_DIRECTORY ${check_dir})
+foreach(length 1h 5min)
+  sigmatau_cli_test(NAME cli_check_undetected_simulate_${length} EXIT 0 WORKING_DIRECTORY ${check_dir}
+    STDOUT "wrote n_only_${length}\\.csv"
+    ARGS simulate --model "N=0.1 deg/sqrt(h)" --rate 100 --duration ${length} --seed 3
+         -o n_only_${length}.csv --force)
+  sigmatau_cli_test(NAME cli_check_undetected_fit_${length} EXIT 0 WORKING_DIRECTORY ${check_dir}
+    ARGS fit n_only_${length}.csv --time-column t --unit rad/s --format json
+         -o n_only_${length}.json --force)
+  set_tests_properties(cli_check_undetected_simulate_${length} PROPERTIES
+                       FIXTURES_SETUP check_n_only_log_${length})
+  set_tests_properties(cli_check_undetected_fit_${length} PROPERTIES
+                       FIXTURES_REQUIRED check_n_only_log_${length}
+                       FIXTURES_SETUP check_n_only_fit_${length})
+endforeach()
+sigmatau_cli_test(NAME cli_check_undetected_pass EXIT 0 WORKING_DIRECTORY ${check_dir}
+  STDOUT "gyro bias_instability x +pass +not detected +< 0\\.[0-9]+ .*RESULT: no check failed.$"
+  ARGS check --spec safran_stim300 n_only_1h.json)
+sigmatau_cli_test(NAME cli_check_undetected_inconclusive EXIT 0 WORKING_DIRECTORY ${check_dir}
+  STDOUT "gyro bias_instability x +inconclusive +not detected.*RESULT: no check failed; 3 inconclusive"
+  ARGS check --spec safran_stim300 n_only_5min.json)
+sigmatau_cli_test(NAME cli_check_undetected_json EXIT 0 WORKING_DIRECTORY ${check_dir}
+  STDOUT "\"detected\": false,[^}]*\"quantity\": \"bias_instability\",[^}]*\"upper_bound\": [^}]*\"verdict\": \"inconclusive\""
+  ARGS check --spec safran_stim300 n_only_5min.json --format json)
+set_tests_properties(cli_check_undetected_pass PROPERTIES FIXTURES_REQUIRED check_n_only_fit_1h)
+set_tests_properties(cli_check_undetected_inconclusive cli_check_undetected_json PROPERTIES
+                     FIXTURES_REQUIRED check_n_only_fit_5min)
+# analyze --spec on the same log, with fit's 95 % (analyze's default 68.3 % bounds 0.664 B at
+# 0.93 x the sheet here: a pass): the row is in summary.md (printed) with its verdict.
+sigmatau_cli_test(NAME cli_check_undetected_analyze EXIT 0 WORKING_DIRECTORY ${check_dir}
+  STDOUT "\\*\\*inconclusive\\*\\*.*\\| gyro bias instability x \\| inconclusive \\| not detected"
+  ARGS analyze n_only_5min.csv --time-column t --gyro-unit rad/s --spec safran_stim300 --ci 0.95
+       -o analyze_5min --force)
+set_tests_properties(cli_check_undetected_analyze PROPERTIES FIXTURES_REQUIRED check_n_only_log_5min)
