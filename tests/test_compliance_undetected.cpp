@@ -192,3 +192,17 @@ TEST_CASE("an N-only fit still gets a bias-instability row in the compliance JSO
         std::string::npos);
   CHECK(html.find("class=\"verdict inconclusive\"") != std::string::npos);
 }
+
+TEST_CASE("a term neither printed on the sheet nor detected gives no row") {
+  // The test sheet prints no accelerometer: an undetected accelerometer B says nothing.
+  const DataSheet sheet = parse_data_sheet(kSheet, "test.yaml");
+  MeasuredParameter accel = undetected(MeasuredQuantity::bias_instability, 1e-4);
+  accel.sensor = Sensor::accel;
+  CHECK(check_compliance({accel}, sheet).empty());
+  // Detected, the same term is listed as not specified (a measurement the sheet cannot judge).
+  accel.detected = true;
+  accel.value = accel.ci_low = accel.ci_high = 1e-4;
+  const auto items = check_compliance({accel}, sheet);
+  REQUIRE(items.size() == 1);
+  CHECK(items[0].verdict == Verdict::not_specified);
+}

@@ -143,7 +143,8 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
         break;  // the preferred field decides; a sheet printing both ARW and ND uses ARW
       }
     }
-    if (!found) {
+    // A term neither printed on the sheet nor detected in the log says nothing: no row.
+    if (!found && p.detected) {
       ComplianceItem item;
       item.measured = p;
       item.verdict = Verdict::not_specified;
