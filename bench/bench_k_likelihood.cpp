@@ -18,7 +18,7 @@
 // Result (bench/results_k_likelihood.md): on 300 MEMS channels the likelihood's K is no better
 // than the curve fit's (16.7 % against 14.6 % median error): the curve is not what limits K.
 // The bound (1 s blocks, N known) is sd(K-hat)/K = 21.9 %, a median |error| of 14.8 % for a
-// normal unbiased estimator; the told fit's spread is 22.4 %.
+// normal unbiased estimator; the told fit's spread is 22.4-22.9 % (seeds 1-200 / 1-1000).
 // Usage: bench_k_likelihood OUT_PREFIX [SEEDS=100] [FIRST_SEED=1001] [BLOCK_S=4] [MODEL=the
 // MEMS gyro's "N=0.15 deg/sqrt(h), B=3 deg/h, K=15 deg/h/sqrt(h)"]; SEEDS=0: the bound only.
 #include <algorithm>

@@ -72,7 +72,8 @@
 // the exact Gaussian likelihood of its 4 s block-mean increments gives K to 16.7 % against the
 // told fit's 14.6 % (bench_k_likelihood, bench/results_k_likelihood.md). The Cramer-Rao bound
 // at the truth (N known, 1 s blocks) is sd(K-hat)/K = 21.9 % (limit ~21.7 % at the sample), a
-// median |error| of 14.7-14.8 % for a normal unbiased estimator; the told fit's spread is 22.4 %.
+// median |error| of 14.7-14.8 % for a normal unbiased estimator; the told fit's spread is 22.9 %
+// (3000 channels, bench/results_fit_accuracy_mems_1000_seeds.md: K 15.5 % selected, 15.3 % told).
 // What limits selection now: MEMS, K's evidence at the last three points (left out in ~6 %);
 // tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).
