@@ -407,6 +407,18 @@ std::vector<std::pair<std::string, std::string>> parameter_cells(const json& res
   return cells;
 }
 
+/// Whether any channel's fit keeps `term` ("Q", "R"): the summary tables show its column then.
+bool any_fit_keeps(const json& results, const char* term) {
+  if (!results.contains("fit") || !results["fit"].contains("channels")) return false;
+  for (const auto& fit : results["fit"]["channels"]) {
+    if (fit.contains("parameters") && fit["parameters"].contains(term) &&
+        fit["parameters"][term].contains("value")) {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string summary_markdown(const json& results, const std::vector<std::string>& warnings) {
   std::ostringstream md;
   const json& input = results["input"];
@@ -420,7 +432,10 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
        << results["compliance"]["spec"].value("part", "") << ": **"
        << results["compliance"].value("verdict", "") << "**\n";
   }
-  md << "\n| channel | N | B | K | noise density (PSD) |\n|---|---|---|---|---|\n";
+  const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
+  md << "\n| channel | N | B | K |" << (show_q ? " Q |" : "") << (show_r ? " R |" : "")
+     << " noise density (PSD) |\n|---|---|---|---|" << (show_q ? "---|" : "") << (show_r ? "---|" : "")
+     << "---|\n";
   for (const auto& channel : results["channels"]) {
     const auto cells = parameter_cells(results, channel);
     std::string density;
@@ -429,7 +444,8 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
       density = parameter_text(channel["psd"]["noise_density"], u.density);
     }
     md << "| " << channel.value("name", "") << " | " << cells[0].second << " | " << cells[1].second
-       << " | " << cells[2].second << " | " << density << " |\n";
+       << " | " << cells[2].second << " | " << (show_q ? cells[3].second + " | " : "")
+       << (show_r ? cells[4].second + " | " : "") << density << " |\n";
   }
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
@@ -481,7 +497,9 @@ std::string report_html(const json& results, const PlotSet& plots,
                                                    : "marginal")
       << "\">" << html_escape(verdict) << "</span></p>\n";
   }
-  h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th><th>noise density (PSD)</th></tr>\n";
+  const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
+  h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th>" << (show_q ? "<th>Q</th>" : "")
+    << (show_r ? "<th>R</th>" : "") << "<th>noise density (PSD)</th></tr>\n";
   for (const auto& channel : results["channels"]) {
     const auto cells = parameter_cells(results, channel);
     std::string density;
@@ -491,12 +509,16 @@ std::string report_html(const json& results, const PlotSet& plots,
     }
     h << "<tr><td>" << html_escape(channel.value("name", "")) << "</td><td>" << html_escape(cells[0].second)
       << "</td><td>" << html_escape(cells[1].second) << "</td><td>" << html_escape(cells[2].second)
+      << (show_q ? "</td><td>" + html_escape(cells[3].second) : "")
+      << (show_r ? "</td><td>" + html_escape(cells[4].second) : "")
       << "</td><td>" << html_escape(density) << "</td></tr>\n";
   }
   h << "</table><p class=\"muted\">Intervals at " << fmt(100 * results.value("confidence", 0.683), 3)
     << " % confidence. N: angle/velocity random walk (white noise density, AVAR = N&sup2;/&tau;); "
-       "B: bias instability (ADEV floor 0.664 B); K: rate random walk. Terms the data does not "
-       "support are given as upper bounds (&lt;).</p>\n";
+       "B: bias instability (ADEV floor 0.664 B); K: rate random walk"
+    << (show_q ? "; Q: quantization (AVAR = 3 Q&sup2;/&tau;&sup2;)" : "")
+    << (show_r ? "; R: rate ramp (AVAR = R&sup2; &tau;&sup2;/2)" : "")
+    << ". Terms the data does not support are given as upper bounds (&lt;).</p>\n";
 
   // Compliance.
   if (results.contains("compliance") && !results["compliance"].is_null()) {
