@@ -412,6 +412,17 @@ TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min
   // The fit bends toward the filtered points, so the furthest is among them or next to them.
   CHECK(bad.joint->misfit_tau_s <= filtered.points[3].value.tau_s);
   CHECK(misfit_warning(*bad.joint, "gx").find("gx: no model") == 0);
+  CHECK(misfit_warning(*bad.joint, "gx").find("filters its output") != std::string::npos);
+  CHECK(bad.joint->misfit_at_shortest_taus);
+
+  SUBCASE("a bump mid-curve is something outside the model, not the sensor's filter") {
+    AllanCurve bump = exact_curve(nbk());
+    bump.points[8].value.dev *= 1.3;  // 2.56 s: a Gauss-Markov or sinusoid's hump
+    const NoiseFit f = fit_noise(bump, source, FitOptions{});
+    CHECK(f.joint->p_value < kMisfitPValue);
+    CHECK_FALSE(f.joint->misfit_at_shortest_taus);
+    CHECK(misfit_warning(*f.joint, "gx").find("Something outside Q, N, B, K, R") != std::string::npos);
+  }
 
   FitOptions from_fourth;
   from_fourth.tau_min_s = filtered.points[3].value.tau_s;

@@ -167,13 +167,17 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
 
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {
   if (!(fit.p_value < kMisfitPValue)) return "";
-  char text[400];
+  char text[500];
   std::snprintf(text, sizeof text,
                 "%s: no model of these noise terms describes the curve (chi-squared %.4g for %d "
-                "degrees of freedom, p = %.2g), furthest at tau = %.4g s: the terms and their "
-                "intervals are not to be trusted. If the sensor filters its output, fit from "
-                "longer taus (fit --tau-min)",
-                channel.c_str(), fit.chi_squared, fit.dof, fit.p_value, fit.misfit_tau_s);
+                "degrees of freedom, p = %.2g), furthest at tau = %.4g s: the terms, their "
+                "intervals and any verdict from them are not to be trusted. %s",
+                channel.c_str(), fit.chi_squared, fit.dof, fit.p_value, fit.misfit_tau_s,
+                fit.misfit_at_shortest_taus
+                    ? "If the sensor filters its output, fit from longer taus (fit --tau-min)"
+                    : "Something outside Q, N, B, K, R (a Gauss-Markov bump, a sinusoid, "
+                      "outliers, a temperature drift) shapes the curve there: look at the plot, "
+                      "and fit a tau range without it (fit --tau-min / --tau-max)");
   return text;
 }
 

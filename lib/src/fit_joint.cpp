@@ -321,6 +321,7 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
       if (z > worst) {
         worst = z;
         out.misfit_tau_s = p.tau_s;
+        out.misfit_at_shortest_taus = j < 4;
       }
     }
   }

@@ -120,6 +120,9 @@ struct ChannelFit {
   int dof = 0;
   double p_value = std::numeric_limits<double>::quiet_NaN();
   double misfit_tau_s = std::numeric_limits<double>::quiet_NaN();
+  /// The furthest point is among the four shortest taus fitted: a sensor's own filtering (the
+  /// fit bends toward the filtered points, so the furthest is among them or just after them).
+  bool misfit_at_shortest_taus = false;
 
   /// The parameter of `term` (Error if absent from `parameters`).
   const ParameterEstimate& parameter(NoiseTerm term) const;
