@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <cstdlib>
 #include <functional>
 #include <filesystem>
@@ -26,6 +27,8 @@ struct ChainArguments {
   std::string statistics = "oadev";
   std::string taus = "octave";
   double ci = 0.683;
+  double fit_tau_min_s = 0;
+  double fit_tau_max_s = std::numeric_limits<double>::infinity();
   std::string spec;
   std::vector<double> rate_out;
   std::string trim = "auto";
@@ -74,6 +77,10 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
   command.add_option("--taus", args.taus, "octave | decade | many[:P] | all | seconds list")
       ->capture_default_str();
   command.add_option("--ci", args.ci, "confidence level of every interval")->capture_default_str();
+  command.add_option("--tau-min", args.fit_tau_min_s,
+                     "the noise-term fit uses only taus >= this [s] (a sensor that filters its "
+                     "output departs from the noise terms at the shortest taus)");
+  command.add_option("--tau-max", args.fit_tau_max_s, "the noise-term fit uses only taus <= this [s]");
   command.add_option("--spec", args.spec, "data sheet to check against (file or name in specs/)");
   command.add_option("--rate-out", args.rate_out,
                      "filter rates [Hz] for the covariances and exports (default: the log's rate)");
@@ -118,6 +125,12 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   options.taus = parse_tau_spec(args.taus);
   if (!(args.ci > 0 && args.ci < 1)) throw Error("--ci must be between 0 and 1, got " + std::to_string(args.ci));
   options.confidence = args.ci;
+  if (!(args.fit_tau_min_s >= 0) || !(args.fit_tau_max_s > args.fit_tau_min_s)) {
+    throw Error("--tau-min / --tau-max: expected 0 <= tau-min < tau-max [s], got " +
+                std::to_string(args.fit_tau_min_s) + " and " + std::to_string(args.fit_tau_max_s));
+  }
+  options.fit_tau_min_s = args.fit_tau_min_s;
+  options.fit_tau_max_s = args.fit_tau_max_s;
   if (args.trim == "auto") {
     options.trim = TrimMode::automatic;
   } else if (args.trim == "none") {

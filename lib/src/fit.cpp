@@ -174,10 +174,10 @@ std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {
                 "intervals and any verdict from them are not to be trusted. %s",
                 channel.c_str(), fit.chi_squared, fit.dof, fit.p_value, fit.misfit_tau_s,
                 fit.misfit_at_shortest_taus
-                    ? "If the sensor filters its output, fit from longer taus (fit --tau-min)"
+                    ? "If the sensor filters its output, fit from longer taus (--tau-min)"
                     : "Something outside Q, N, B, K, R (a Gauss-Markov bump, a sinusoid, "
                       "outliers, a temperature drift) shapes the curve there: look at the plot, "
-                      "and fit a tau range without it (fit --tau-min / --tau-max)");
+                      "and fit a tau range without it (--tau-min / --tau-max)");
   return text;
 }
 

@@ -41,3 +41,15 @@ sigmatau_cli_test(NAME cli_analyze_one_unit_two_sensors EXIT 2
   STDERR "--unit \\(applied to the accelerometer column ax; give --gyro-unit and --accel-unit apart\\)"
   ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
        -o ${analyze_dir}/one_unit)
+# --tau-min / --tau-max restrict the taus the fit uses, as in fit (from 1 s: 8 of the 15 points,
+# N and K, 6 degrees of freedom); a reversed range is refused.
+sigmatau_cli_test(NAME cli_analyze_tau_range_reversed EXIT 2 STDERR "--tau-min / --tau-max: expected"
+  ARGS analyze ${example} --time-column t --gyro-unit deg/s --tau-min 10 --tau-max 1
+       -o ${analyze_dir}/tau_range_reversed)
+sigmatau_cli_test(NAME cli_analyze_tau_range EXIT 0 STDOUT "wrote .*tau_range"
+  ARGS analyze ${example} --time-column t --gyro-unit deg/s --tau-min 1 -o ${analyze_dir}/tau_range)
+add_test(NAME cli_analyze_tau_range_points
+         COMMAND ${CMAKE_COMMAND} -DFILE=${analyze_dir}/tau_range/results.json
+                 "-DPATTERN=\"dof\": 6,"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_in_file.cmake)
+set_tests_properties(cli_analyze_tau_range_points PROPERTIES DEPENDS cli_analyze_tau_range)

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -58,6 +59,9 @@ struct AnalysisOptions {
   std::vector<Statistic> statistics{Statistic::oadev};  ///< the first one is plotted and fitted
   TauSpec taus;
   double confidence = 0.683;
+  /// Taus the noise-term fit uses (FitOptions::tau_min_s / tau_max_s); the curves keep all.
+  double fit_tau_min_s = 0;
+  double fit_tau_max_s = std::numeric_limits<double>::infinity();
   WelchOptions welch;
   int psd_bins_per_decade = 20;  ///< PSD stored log-binned (the raw PSD of a long log is huge)
   TrimMode trim = TrimMode::automatic;
