@@ -14,6 +14,7 @@
 #include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/resources.hpp"
@@ -125,10 +126,7 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   options.taus = parse_tau_spec(args.taus);
   if (!(args.ci > 0 && args.ci < 1)) throw Error("--ci must be between 0 and 1, got " + std::to_string(args.ci));
   options.confidence = args.ci;
-  if (!(args.fit_tau_min_s >= 0) || !(args.fit_tau_max_s > args.fit_tau_min_s)) {
-    throw Error("--tau-min / --tau-max: expected 0 <= tau-min < tau-max [s], got " +
-                std::to_string(args.fit_tau_min_s) + " and " + std::to_string(args.fit_tau_max_s));
-  }
+  check_tau_range(args.fit_tau_min_s, args.fit_tau_max_s);  // before the log is read
   options.fit_tau_min_s = args.fit_tau_min_s;
   options.fit_tau_max_s = args.fit_tau_max_s;
   if (args.trim == "auto") {

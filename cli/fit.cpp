@@ -318,10 +318,7 @@ void run_fit(const FitArguments& args) {
     throw Error("--ci: confidence level must be in (0, 1), got " + std::to_string(args.ci));
   }
   options.confidence_level = args.ci;
-  if (!(args.tau_min_s >= 0) || !(args.tau_max_s > args.tau_min_s)) {
-    throw Error("--tau-min / --tau-max: expected 0 <= tau-min < tau-max [s], got " +
-                std::to_string(args.tau_min_s) + " and " + std::to_string(args.tau_max_s));
-  }
+  check_tau_range(args.tau_min_s, args.tau_max_s);
   options.tau_min_s = args.tau_min_s;
   options.tau_max_s = args.tau_max_s;
   if (args.format != "table" && args.format != "json") {

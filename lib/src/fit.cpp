@@ -108,6 +108,7 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     throw Error("--ci: confidence level must be in (0, 1), got " +
                 std::to_string(options.confidence_level));
   }
+  check_tau_range(options.tau_min_s, options.tau_max_s);
   for (const auto t : options.terms) detail::term_index(t);
   for (const auto t : options.candidates) detail::term_index(t);
   if (options.terms.empty() && options.candidates.empty()) throw Error("fit: no candidate terms");
@@ -163,6 +164,13 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     }
   }
   return fit;
+}
+
+void check_tau_range(double tau_min_s, double tau_max_s) {
+  if (!(tau_min_s >= 0) || !(tau_max_s > tau_min_s)) {
+    throw Error("--tau-min / --tau-max: expected 0 <= tau-min < tau-max [s], got " +
+                std::to_string(tau_min_s) + " and " + std::to_string(tau_max_s));
+  }
 }
 
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {

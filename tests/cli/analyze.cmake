@@ -47,7 +47,7 @@ sigmatau_cli_test(NAME cli_analyze_tau_range_reversed EXIT 2 STDERR "--tau-min /
   ARGS analyze ${example} --time-column t --gyro-unit deg/s --tau-min 10 --tau-max 1
        -o ${analyze_dir}/tau_range_reversed)
 sigmatau_cli_test(NAME cli_analyze_tau_range EXIT 0 STDOUT "wrote .*tau_range"
-  ARGS analyze ${example} --time-column t --gyro-unit deg/s --tau-min 1 -o ${analyze_dir}/tau_range)
+  ARGS analyze ${example} --time-column t --gyro-unit deg/s --tau-min 1 -o ${analyze_dir}/tau_range --force)
 add_test(NAME cli_analyze_tau_range_points
          COMMAND ${CMAKE_COMMAND} -DFILE=${analyze_dir}/tau_range/results.json
                  "-DPATTERN=\"dof\": 6,"

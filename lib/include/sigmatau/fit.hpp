@@ -142,6 +142,9 @@ struct NoiseFit {
 /// N < 3), a point's m does not match its tau, or the confidence level is not in (0, 1).
 NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const FitOptions& options);
 
+/// Throws Error unless 0 <= tau_min_s < tau_max_s (the --tau-min / --tau-max range of a fit).
+void check_tau_range(double tau_min_s, double tau_max_s);
+
 /// The p value below which a joint fit is reported as not describing its curve.
 inline constexpr double kMisfitPValue = 1e-3;
 /// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
