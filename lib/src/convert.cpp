@@ -190,6 +190,7 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
   const std::string sensor(to_string(triad.sensor));
   TriadDiscrete out;
   out.bias_origin = triad.bias_origin;
+  out.bias_from_upper_bound = triad.bias_from_upper_bound;
   out.sensor = triad.sensor;
 
   bool any_white = false;

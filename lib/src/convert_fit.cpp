@@ -81,6 +81,7 @@ std::vector<TriadNoise> triads_from_fit_json(std::string_view json_text, const s
       for (int a = 0; a < 3; ++a) {
         if (!axes[s][a] || (axes[s][a]->kept.*member) || !(axes[s][a]->upper_bounds.*member)) continue;
         triad.axes[a].*member = *(axes[s][a]->upper_bounds.*member);
+        triad.bias_from_upper_bound = true;
         triad.bias_origin += std::string("; ") + (member == &NoiseTerms::bias_instability ? "B" : "K") +
                              " on axis " + static_cast<char>('x' + a) +
                              ": not detected, its upper bound used";

@@ -55,7 +55,7 @@ std::string header(const DiscreteNoise& n, const std::string& format_line) {
     << "; bias model " << to_string(n.options.bias_model) << "\n";
   for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
     // An upper bound standing in for a term the fit did not detect is not a measurement.
-    if (t && t->bias && t->bias_origin.find("upper bound") != std::string::npos) {
+    if (t && t->bias && t->bias_from_upper_bound) {
       o << "# " << to_string(t->sensor) << " bias: " << t->bias_origin << "\n";
     }
     if (!t || !t->bias || t->bias->source != BiasSource::bias_stability) continue;

@@ -81,6 +81,8 @@ struct TriadNoise {
   std::string white_origin;
   /// How B / K / GM were obtained, for the explanation. Empty: nothing added.
   std::string bias_origin;
+  /// true: on some axis a fit's upper bound stands in for a bias term it did not detect.
+  bool bias_from_upper_bound = false;
 };
 
 /// The same terms on all three axes.
@@ -152,9 +154,10 @@ struct BiasDiscrete {
 /// One converted triad.
 struct TriadDiscrete {
   Sensor sensor = Sensor::gyro;
-  /// Where the bias came from (TriadNoise::bias_origin), for the files' headers: e.g. a term
-  /// the fit did not detect, written as its upper bound.
+  /// Where the bias came from (TriadNoise::bias_origin, bias_from_upper_bound), for the files'
+  /// headers: a term the fit did not detect, written as its upper bound, is said so.
   std::string bias_origin;
+  bool bias_from_upper_bound = false;
   std::optional<WhiteDiscrete> white;
   std::optional<BiasDiscrete> bias;
 };
