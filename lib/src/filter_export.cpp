@@ -62,7 +62,7 @@ std::string header(const DiscreteNoise& n, const std::string& format_line) {
     const std::string sensor(to_string(t->sensor));
     if (t->bias->model == BiasModel::random_walk) {
       o << "# " << sensor << " bias random walk from the bias stability B by the rule of thumb "
-        << "K = B_ds / sqrt(T_ref), B_ds the printed stability (ADEV floor 0.664 B), T_ref = " << num(t->bias->t_ref_s)
+        << "K = B_ds / sqrt(T_ref), B_ds the bias stability (ADEV floor 0.664 B), T_ref = " << num(t->bias->t_ref_s)
         << " s (--tref): not a measured K\n";
     } else {
       o << "# " << sensor << " bias Gauss-Markov from the bias stability B with its ADEV minimum "
