@@ -1,5 +1,6 @@
 // `sigmatau convert`: data sheet or typed-in noise terms -> discrete covariances at a filter
 // rate, exported for a filter project, with the arithmetic on request (--explain).
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -126,10 +127,19 @@ void run_convert(const ConvertArguments& args) {
           args.noise_density, gyro ? dim::angle_random_walk : dim::velocity_random_walk,
           "--noise-density");
       if (!(nd > 0)) throw Error("--noise-density must be > 0");
+      // A unit per root hour or second (deg/sqrt(h), m/s/sqrt(h)) is an ARW / VRW, i.e. the
+      // Allan N itself, as a data sheet's random-walk line is: no density convention applies.
+      // Only a value per root Hz is a PSD level.
+      std::string lower = args.noise_density;
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const bool random_walk_form = lower.find("hz") == std::string::npos;
       const bool two = options.convention == DensityConvention::two_sided;
-      terms.white = two ? nd : nd / std::sqrt(2.0);
+      terms.white = two || random_walk_form ? nd : nd / std::sqrt(2.0);
       t.white_origin = "noise density " + args.noise_density +
-                       (two ? " read as N = ND (two-sided)" : " read as one-sided: N = ND / sqrt(2)");
+                       (random_walk_form ? " read as the random walk N itself (a unit per root time, "
+                                           "not per root Hz: no density convention applies)"
+                        : two            ? " read as N = ND (two-sided)"
+                                         : " read as one-sided: N = ND / sqrt(2)");
     }
     std::string bias;
     if (!args.bias_stability.empty()) {
@@ -189,7 +199,8 @@ void add_convert_command(CLI::App& app) {
   command->add_option("--fit", args->fit,
                       "a `sigmatau fit --format json` result or an analyze results.json");
   command->add_option("--noise-density", args->noise_density,
-                      "printed noise density ND, e.g. \"0.015 deg/s/sqrt(Hz)\" or \"70 ug/sqrt(Hz)\"");
+                      "printed noise density ND, e.g. \"0.015 deg/s/sqrt(Hz)\" or \"70 ug/sqrt(Hz)\", or "
+                      "the random walk itself, e.g. \"0.3 deg/sqrt(h)\" (no --density-convention then)");
   command->add_option("--bias-stability", args->bias_stability,
                       "in-run bias stability (ADEV floor), e.g. \"3 deg/h\" or \"0.05 mg\"");
   command->add_option("--random-walk", args->random_walk,

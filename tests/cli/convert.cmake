@@ -54,3 +54,8 @@ sigmatau_cli_test(NAME cli_convert_sensor_from_unit EXIT 0 STDOUT "^accel: f_s =
   ARGS convert --noise-density "70 ug/sqrt(Hz)" --rate 100)
 sigmatau_cli_test(NAME cli_convert_sensor_told_wins EXIT 2 STDERR "--noise-density: expected angle"
   ARGS convert --noise-density "70 ug/sqrt(Hz)" --sensor gyro --rate 100)
+# A random walk typed per root hour is the Allan N itself: --density-convention one-sided does
+# not divide it by sqrt(2) (0.3 deg/sqrt(h) = 0.005 deg/s/sqrt(Hz) exactly), as for a sheet's ARW.
+sigmatau_cli_test(NAME cli_convert_arw_ignores_convention EXIT 0
+  STDOUT "read as the random walk N itself.*\\(= 0\\.005 deg/s/sqrt\\(Hz\\)\\)"
+  ARGS convert --noise-density "0.3 deg/sqrt(h)" --rate 100 --density-convention one-sided)
