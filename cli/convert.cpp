@@ -12,6 +12,7 @@
 #include "sigmatau/resources.hpp"
 #include "sigmatau/spec.hpp"
 #include "sigmatau/units.hpp"
+#include "log_options.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -61,15 +62,6 @@ Sensor typed_sensor(const ConvertArguments& args) {
     }
   }
   return Sensor::gyro;
-}
-
-/// A time or rate option: "100 s", "100s", "2 min", or a bare number in `bare_unit`.
-double quantity_option(const std::string& text, const Dimension& d, const char* option,
-                       const char* bare_unit) {
-  char* end = nullptr;
-  [[maybe_unused]] const double bare = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() && *end == '\0') return parse_quantity_as(text + " " + bare_unit, d, option);
-  return parse_quantity_as(text, d, option);
 }
 
 void run_convert(const ConvertArguments& args) {

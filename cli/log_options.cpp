@@ -3,10 +3,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "sigmatau/error.hpp"
 
@@ -45,14 +45,11 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
   command.add_option("--rate", args.rate_hz,
                      "sample rate [Hz], e.g. 100 or \"100 Hz\" (default: measured from the time column)")
       ->transform(
-          [](std::string text) {
-            // "100 Hz" and "100Hz" as convert and data sheets write it: the unit is dropped.
-            while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-            if (text.size() > 2 && (text.ends_with("Hz") || text.ends_with("hz"))) {
-              text.resize(text.size() - 2);
-              while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-            }
-            return text;
+          [](const std::string& text) {
+            // "100 Hz" or "2 kHz" as convert reads its --rate: the same parser, in Hz.
+            char hz[40];
+            std::snprintf(hz, sizeof hz, "%.17g", quantity_option(text, dim::frequency, "--rate", "Hz"));
+            return std::string(hz);
           },
           "", "Hz");
   command.add_option("--kind", args.kind,
@@ -173,6 +170,14 @@ void note_reordering(const std::string& input, const TimingReport& timing,
 }
 
 }  // namespace
+
+double quantity_option(const std::string& text, const Dimension& d, const char* option,
+                       const char* bare_unit) {
+  char* end = nullptr;
+  [[maybe_unused]] const double bare = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && *end == '\0') return parse_quantity_as(text + " " + bare_unit, d, option);
+  return parse_quantity_as(text, d, option);
+}
 
 void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing) {
   note_topic_choice(args.input, timing);

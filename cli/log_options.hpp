@@ -37,6 +37,11 @@ struct LogArguments {
 /// verb can tell which were given (given_option_names).
 std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args);
 
+/// A time or rate option: "100 s", "100s", "2 min", "200 Hz", or a bare number in `bare_unit`;
+/// in SI. Throws UnitError naming `option` on another dimension or a malformed text.
+double quantity_option(const std::string& text, const Dimension& d, const char* option,
+                       const char* bare_unit);
+
 /// The names of the options in `options` given on the command line, comma-separated in the
 /// order of `options` ("" when none was given).
 std::string given_option_names(const std::vector<CLI::Option*>& options);
