@@ -227,6 +227,24 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
   if (!args.accel_unit.empty()) {
     parse_unit_as(args.accel_unit, expected_dimension(false), "--accel-unit");
   }
+  // --unit of one sensor's dimension beside that sensor's own option: one of the two was
+  // silently ignored (--unit deg/s --gyro-unit rad/s read the gyros as rad/s).
+  std::optional<Unit> common;
+  try {
+    if (!args.log.unit.empty()) common = parse_unit(args.log.unit);
+  } catch (const UnitError&) {
+    // a bad --unit is reported, named, where the columns take it
+  }
+  if (common) {
+    for (const bool gyro : {true, false}) {
+      const std::string& own = gyro ? args.gyro_unit : args.accel_unit;
+      if (own.empty() || common->dimension != expected_dimension(gyro)) continue;
+      if (parse_unit(own).factor == common->factor) continue;
+      throw Error("--unit " + args.log.unit + " and " + (gyro ? "--gyro-unit " : "--accel-unit ") + own +
+                  " both name the unit of the " + (gyro ? "gyro" : "accelerometer") +
+                  " columns and disagree: give one of them");
+    }
+  }
   std::vector<BoundedChannel> chosen;
   for (std::size_t c = 0; c < names.size(); ++c) {
     BoundedChannel channel;

@@ -53,3 +53,14 @@ add_test(NAME cli_analyze_tau_range_points
                  "-DPATTERN=\"dof\": 6,"
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_in_file.cmake)
 set_tests_properties(cli_analyze_tau_range_points PROPERTIES DEPENDS cli_analyze_tau_range)
+# --unit and --gyro-unit that disagree on the gyro columns are refused: the gyros used to be read
+# in --gyro-unit without a word, so a deg/s log came out 57x too noisy.
+sigmatau_cli_test(NAME cli_analyze_unit_conflict EXIT 2
+  STDERR "--unit deg/s and --gyro-unit rad/s both name the unit of the gyro columns and disagree"
+  NO_FILE ${analyze_dir}/unit_conflict
+  ARGS analyze ${example} --time-column t --unit deg/s --gyro-unit rad/s -o ${analyze_dir}/unit_conflict)
+# --unit for the gyros beside --accel-unit for the accelerometers is not a conflict.
+sigmatau_cli_test(NAME cli_analyze_unit_and_accel_unit EXIT 0
+  STDOUT "wrote "
+  ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
+       --accel-unit m/s^2 -o ${analyze_dir}/unit_and_accel_unit --force)
