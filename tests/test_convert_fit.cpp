@@ -42,6 +42,32 @@ TEST_CASE("a fit result becomes triads; a bias term kept on some axes gets its b
   CHECK(kalibr.find("# accel bias:") == std::string::npos);  // accel K measured on its axis
 }
 
+TEST_CASE("a triad with neither B nor K kept gets both upper bounds, so a filter file is complete") {
+  // A short log: white noise only. Kalibr needs a random walk, and the bound is what the log
+  // says of it; before, the key was left out ("not given").
+  const char* fit = R"json({"channels":[
+    {"name":"gx","quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},
+      "B":{"upper_bound":4e-6},"K":{"upper_bound":2e-6}}},
+    {"name":"gy","quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},
+      "B":{"upper_bound":5e-6},"K":{"upper_bound":3e-6}}},
+    {"name":"gz","quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},
+      "B":{"upper_bound":6e-6},"K":{"upper_bound":1e-6}}}]})json";
+  const auto triads = triads_from_fit_json(fit, "fit.json");
+  REQUIRE(triads.size() == 1);
+  const TriadNoise& gyro = triads[0];
+  CHECK(gyro.bias_from_upper_bound);
+  CHECK(*gyro.axes[1].rate_random_walk == 3e-6);
+  CHECK(*gyro.axes[2].bias_instability == 6e-6);
+  CHECK(gyro.bias_origin.find("neither B nor K detected on any axis: their upper bounds used") !=
+        std::string::npos);
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const std::string kalibr =
+      export_filter_config(convert_noise(triads, o, "fit.json"), ExportFormat::kalibr);
+  CHECK(kalibr.find("\ngyroscope_random_walk: 3.0") != std::string::npos);  // the largest axis
+  CHECK(kalibr.find("gyroscope_random_walk: not given") == std::string::npos);
+}
+
 TEST_CASE("an analyze results.json is read through its fit section") {
   const char* results = R"json({"tool":"sigmatau","channels":[{"name":"gx","allan":[]}],
     "fit":{"channels":[{"name":"gx","quantity":"angular_rate","parameters":{"N":{"value":1e-4}}}]}})json";

@@ -74,18 +74,30 @@ std::vector<TriadNoise> triads_from_fit_json(std::string_view json_text, const s
     for (int a = 0; a < 3; ++a) {
       if (axes[s][a]) triad.axes[a] = axes[s][a]->kept;
     }
-    for (auto member : {&NoiseTerms::bias_instability, &NoiseTerms::rate_random_walk}) {
+    // A bias term kept on some axes is completed on the others by its upper bound. When no axis
+    // kept B or K (a short log shows white noise only), both are their upper bounds: a filter
+    // needs a bias model, and the bound is what the log says of it (the file says so).
+    const auto kept_on_any_axis = [&](std::optional<double> NoiseTerms::*member) {
       bool any = false;
       for (const auto& a : axes[s]) any = any || (a && (a->kept.*member).has_value());
-      if (!any) continue;
+      return any;
+    };
+    const bool no_bias_term = !kept_on_any_axis(&NoiseTerms::bias_instability) &&
+                              !kept_on_any_axis(&NoiseTerms::rate_random_walk);
+    for (auto member : {&NoiseTerms::bias_instability, &NoiseTerms::rate_random_walk}) {
+      if (!kept_on_any_axis(member) && !no_bias_term) continue;
       for (int a = 0; a < 3; ++a) {
         if (!axes[s][a] || (axes[s][a]->kept.*member) || !(axes[s][a]->upper_bounds.*member)) continue;
         triad.axes[a].*member = *(axes[s][a]->upper_bounds.*member);
         triad.bias_from_upper_bound = true;
+        if (no_bias_term) continue;  // said once for the triad, below
         triad.bias_origin += std::string("; ") + (member == &NoiseTerms::bias_instability ? "B" : "K") +
                              " on axis " + static_cast<char>('x' + a) +
                              ": not detected, its upper bound used";
       }
+    }
+    if (no_bias_term && triad.bias_from_upper_bound) {
+      triad.bias_origin += "; neither B nor K detected on any axis: their upper bounds used";
     }
     // Axes the result has no channel for (a single-axis test) get the largest measured value of
     // each term: a filter needs all three, and the worst axis is the safe stand-in.
