@@ -14,6 +14,7 @@
 #include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
+#include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
@@ -24,6 +25,9 @@ namespace {
 
 struct FitArguments {
   LogArguments log;
+  /// Units of the gyro and accelerometer columns of a log with both (instead of one --unit).
+  std::string gyro_unit;
+  std::string accel_unit;
   std::string method = "joint";
   std::string terms;
   double ci = 0.95;
@@ -255,6 +259,56 @@ std::optional<Sensor> sensor_from_unit(const LoadedChannels& unit) {
               ") is neither an angular rate nor an acceleration");
 }
 
+/// --gyro-unit / --accel-unit: each sensor's factor to SI (1 when its option is left out), for a
+/// log whose gyro and accelerometer columns are in different units. The channels' sensors then
+/// come from their names (classify_channel), and the curves computed in the input units are
+/// scaled by their sensor's factor (a deviation and its interval scale with the unit; the
+/// noise identification and the EDF do not depend on it).
+struct SensorUnits {
+  double gyro_to_si = 1;
+  double accel_to_si = 1;
+};
+
+std::optional<SensorUnits> sensor_units(const FitArguments& args) {
+  if (args.gyro_unit.empty() && args.accel_unit.empty()) return std::nullopt;
+  if (!args.log.unit.empty()) {
+    throw Error("--unit " + args.log.unit + " names one unit for every column; with --gyro-unit / "
+                "--accel-unit leave it out");
+  }
+  const bool amounts = parse_data_kind(args.log.kind) != DataKind::rate;  // increments: rad, m/s
+  auto factor = [&](const std::string& text, Dimension expected, const char* option) {
+    if (text.empty()) return 1.0;
+    if (amounts) expected.time2 += 2;
+    return parse_unit_as(text, expected, option).factor;
+  };
+  SensorUnits units;
+  units.gyro_to_si = factor(args.gyro_unit, dim::angular_rate, "--gyro-unit");
+  units.accel_to_si = factor(args.accel_unit, dim::acceleration, "--accel-unit");
+  if (args.gyro_unit.empty() || args.accel_unit.empty()) {
+    std::cerr << "sigmatau: no " << (args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit")
+              << ": the " << (args.gyro_unit.empty() ? "gyro" : "accelerometer")
+              << " columns, if any, are taken as SI\n";
+  }
+  return units;
+}
+
+/// The sensor of a column by its name, for --gyro-unit / --accel-unit; Error naming the column
+/// when the name says neither.
+Sensor sensor_by_name(const std::string& name, const std::string& input) {
+  if (const auto role = classify_channel(name)) return role->sensor;
+  throw Error(input + ": column \"" + name + "\" is neither a gyro nor an accelerometer by its "
+              "name (gx / gyro_x / wx, ax / accel_x), so --gyro-unit / --accel-unit cannot say its "
+              "unit; choose the sensor columns with --columns");
+}
+
+void scale_curve(AllanCurve& curve, double factor) {
+  for (auto& point : curve.points) {
+    point.value.dev *= factor;
+    point.confidence.interval.low *= factor;
+    point.confidence.interval.high *= factor;
+  }
+}
+
 /// The OADEV curve (octave taus, 68.3 % intervals) of every channel of a log, and what the fit
 /// needs to know of the series behind it.
 struct LogCurves {
@@ -329,10 +383,14 @@ void run_fit(const FitArguments& args) {
   std::vector<Channel> channels;
   if (looks_like_json(sniff(args.log.input))) {
     const auto saved_curves = read_adev_json(read_text_file(args.log.input), args.log.input);
-    if (!args.log_options_given.empty()) {
+    std::string ignored = args.log_options_given;
+    for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--gyro-unit", args.gyro_unit},
+                                        {"--accel-unit", args.accel_unit}}) {
+      if (!value.empty()) ignored += (ignored.empty() ? "" : ", ") + std::string(option);
+    }
+    if (!ignored.empty()) {
       throw Error(args.log.input + " is a saved adev result (its rate, units and channels are in "
-                  "it): " + args.log_options_given +
-                  " would be ignored; leave them out, or fit the log itself");
+                  "it): " + ignored + " would be ignored; leave them out, or fit the log itself");
     }
     for (const auto& saved : saved_curves) {
       Channel c;
@@ -350,7 +408,8 @@ void run_fit(const FitArguments& args) {
     LoadedChannels unit_only;
     set_input_unit(args.log, unit_only);
     const std::optional<Sensor> from_unit = sensor_from_unit(unit_only);
-    if (args.log.unit.empty()) {
+    const std::optional<SensorUnits> per_sensor = sensor_units(args);
+    if (args.log.unit.empty() && !per_sensor) {
       std::cerr << "sigmatau: no --unit: the values are taken as SI (rad/s for a gyro, m/s^2 for "
                    "an accelerometer)\n";
     }
@@ -361,7 +420,12 @@ void run_fit(const FitArguments& args) {
     for (std::size_t i = 0; i < log.curves.size(); ++i) {
       Channel c;
       c.name = log.channel_names[i];
-      c.sensor = sensor_of(c.name, from_unit);
+      if (per_sensor) {
+        c.sensor = sensor_by_name(c.name, args.log.input);
+        scale_curve(log.curves[i], c.sensor == Sensor::gyro ? per_sensor->gyro_to_si : per_sensor->accel_to_si);
+      } else {
+        c.sensor = sensor_of(c.name, from_unit);
+      }
       try {
         c.fit = fit_noise(log.curves[i], log.source, options);
       } catch (const Error& e) {
@@ -405,6 +469,11 @@ void add_fit_command(CLI::App& app) {
              "`adev --format json` result: a joint fit that keeps only the terms the data "
              "supports, and/or the IEEE slope read-outs");
   const std::vector<CLI::Option*> log_options = add_log_options(*command, args->log);
+  command->add_option("--gyro-unit", args->gyro_unit,
+                      "unit of the gyro columns of a log with both sensors (instead of --unit; "
+                      "the columns' sensors then come from their names)");
+  command->add_option("--accel-unit", args->accel_unit,
+                      "unit of the accelerometer columns of a log with both sensors (instead of --unit)");
   command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
   // An explicitly empty --terms used to mean the BIC choice silently; it is an error like --stat "".
   command->add_option("--terms", args->terms,
