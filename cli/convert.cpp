@@ -32,6 +32,8 @@ struct ConvertArguments {
   double inflate = 1;
   std::string convention = "two-sided";
   std::string to;
+  std::string rostopic = ExportOptions{}.rostopic;
+  std::string px4_predict = "10 ms";
   bool explain = false;
   std::string output;
   bool force = false;
@@ -162,7 +164,14 @@ void run_convert(const ConvertArguments& args) {
     std::cout << noise.explain;
     return;
   }
-  const std::string text = export_filter_config(noise, *format);
+  ExportOptions export_options;
+  export_options.rostopic = args.rostopic;
+  export_options.px4_predict_interval_s =
+      quantity_option(args.px4_predict, dim::time, "--px4-predict", "us");
+  if (!(export_options.px4_predict_interval_s > 0)) {
+    throw Error("--px4-predict: expected a time > 0, got \"" + args.px4_predict + "\"");
+  }
+  const std::string text = export_filter_config(noise, *format, export_options);
   if (const auto missing = missing_filter_keys(noise, *format); !missing.empty()) {
     std::string keys;
     for (const auto& k : missing) keys += (keys.empty() ? "" : ", ") + k;
@@ -216,6 +225,11 @@ void add_convert_command(CLI::App& app) {
   command->add_option("--to,--format", args->to,
                       "kalibr | openvins | vins-fusion | gtsam | px4 | json (default: print the "
                       "arithmetic)");
+  command->add_option("--rostopic", args->rostopic, "IMU topic in the kalibr / openvins file")
+      ->capture_default_str();
+  command->add_option("--px4-predict", args->px4_predict,
+                      "PX4 EKF2 prediction interval, your EKF2_PREDICT_US, e.g. 10000 (us) or \"8 ms\"")
+      ->capture_default_str();
   command->add_flag("--explain", args->explain,
                     "also print the arithmetic (to stderr when the export goes to stdout)");
   command->add_option("-o,--output", args->output, "write the export to FILE (atomically)");

@@ -178,8 +178,13 @@ std::string gtsam(const DiscreteNoise& n) {
   const double fs = n.options.rate_hz;
   o << header(n, "GTSAM PreintegrationParams / PreintegrationCombinedParams (continuous-time "
                  "covariances)");
-  o << "# GTSAM multiplies the measurement covariances by 1/dt and the bias covariances by dt "
-       "itself\n";
+  o << "# GTSAM reads no file: copy each matrix into its setter, e.g. "
+       "params->setGyroscopeCovariance(...), setAccelerometerCovariance, setBiasOmegaCovariance, "
+       "setBiasAccCovariance\n"
+       "# GTSAM multiplies the measurement covariances by 1/dt and the bias covariances by dt "
+       "itself\n"
+       "# a plain ImuFactor with a BetweenFactor on the bias needs the discrete K^2 x (time "
+       "between its keys) instead\n";
   auto matrix = [&](const char* key, const Eigen::Matrix3d* m, const char* unit,
                     const char* what) {
     if (!m) {
@@ -268,7 +273,10 @@ std::string json(const DiscreteNoise& n) {
   doc["source"] = n.source;
   for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
     if (!t) continue;
+    // One unit per field: the sample's unit, its square, and the density units.
     const std::string unit = t->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
+    const std::string squared = "(" + unit + ")^2";
+    const std::string rate_unit = t->sensor == Sensor::gyro ? "rad/s^2" : "m/s^3";
     nlohmann::json sensor = nlohmann::json::object();
     if (t->white) {
       const auto& w = *t->white;
@@ -276,7 +284,10 @@ std::string json(const DiscreteNoise& n) {
                                {"variance_per_sample", vector_or_scalar(w.variance_per_sample)},
                                {"sigma_per_sample", vector_or_scalar(w.sigma_per_sample)},
                                {"Q", matrix_json(w.q)},
-                               {"unit", unit}};
+                               {"units", {{"density", unit + "/sqrt(Hz)"},
+                                          {"variance_per_sample", squared},
+                                          {"sigma_per_sample", unit},
+                                          {"Q", squared}}}};
     }
     if (t->bias) {
       const auto& b = *t->bias;
@@ -286,13 +297,18 @@ std::string json(const DiscreteNoise& n) {
                              {"sigma_per_step", vector_or_scalar(b.sigma_per_step)},
                              {"random_walk_density", vector_or_scalar(b.random_walk_density)},
                              {"Q", matrix_json(b.q)},
-                             {"unit", unit}};
+                             {"units", {{"variance_per_step", squared},
+                                        {"sigma_per_step", unit},
+                                        {"random_walk_density", rate_unit + "/sqrt(Hz)"},
+                                        {"Q", squared}}}};
       if (b.model == BiasModel::random_walk) {
         if (b.source == BiasSource::bias_stability) bias["t_ref_s"] = b.t_ref_s;
       } else {
         bias["phi"] = vector_or_scalar(b.phi);
         bias["tau_c_s"] = vector_or_scalar(b.tau_c_s);
         bias["sigma"] = vector_or_scalar(b.sigma);
+        bias["units"]["sigma"] = unit;
+        bias["units"]["tau_c_s"] = "s";
         if (b.source == BiasSource::bias_stability) bias["tau_min_s"] = b.tau_min_s;
       }
       sensor["bias"] = bias;

@@ -59,3 +59,13 @@ sigmatau_cli_test(NAME cli_convert_sensor_told_wins EXIT 2 STDERR "--noise-densi
 sigmatau_cli_test(NAME cli_convert_arw_ignores_convention EXIT 0
   STDOUT "read as the random walk N itself.*\\(= 0\\.005 deg/s/sqrt\\(Hz\\)\\)"
   ARGS convert --noise-density "0.3 deg/sqrt(h)" --rate 100 --density-convention one-sided)
+# The PX4 prediction interval and the Kalibr topic are the user's: EKF2_PREDICT_US = 8000 gives
+# EKF2_GYR_NOISE = N / sqrt(0.008 s) = 0.015 x pi/180 / 0.0894427 = 0.002927006 rad/s.
+sigmatau_cli_test(NAME cli_convert_px4_predict EXIT 0
+  STDOUT "EKF2_PREDICT_US = 8000 us.*param set EKF2_GYR_NOISE 0.002927006 "
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 100 --to px4 --px4-predict 8000)
+sigmatau_cli_test(NAME cli_convert_px4_predict_bad EXIT 2
+  STDERR "--px4-predict: expected time \\(e.g. s\\), found 1/time"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 100 --to px4 --px4-predict "3 Hz")
+sigmatau_cli_test(NAME cli_convert_rostopic EXIT 0 STDOUT "\nrostopic: /imu/data\n"
+  ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 100 --to kalibr --rostopic /imu/data)
