@@ -2,7 +2,8 @@
 # interval, coloured by verdict (pass green, marginal amber, fail red, inconclusive grey); the
 # limit is the line at 1. A term the fit did not detect is one point at upper bound / limit
 # (its label says so).
-# Variables set by sigmatau (gnuplot -e): datafile, outfile, term, title_text, nrows.
+# Variables set by sigmatau (gnuplot -e): datafile, outfile, term, title_text, nrows, xmin, xmax
+# (the x range, which always holds the limit line at 1).
 # datafile columns: row ratio ratio_low ratio_high color(0xRRGGBB) "label"
 
 if (term eq 'svg') {
@@ -17,6 +18,9 @@ if (term eq 'svg') {
 set output outfile
 set title title_text noenhanced
 set logscale x
+set xrange [xmin:xmax]
+# a short range holds no decade but 1: label the 2 and 5 steps too
+set xtics add (0.02, 0.05, 0.2, 0.5, 2, 5, 20, 50)
 set xlabel "measured / data-sheet limit\n(bar: confidence interval; a term not detected: its upper bound)" noenhanced
 set yrange [-0.7:nrows-0.3]
 set ytics nomirror

@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include "sigmatau/compliance.hpp"
+#include "sigmatau/plot.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/spec.hpp"
 #include "test_support.hpp"
@@ -205,4 +207,20 @@ TEST_CASE("a term neither printed on the sheet nor detected gives no row") {
   const auto items = check_compliance({accel}, sheet);
   REQUIRE(items.size() == 1);
   CHECK(items[0].verdict == Verdict::not_specified);
+}
+
+TEST_CASE("the compliance chart's x range always shows the limit line at 1") {
+  // Every item failing (ratios 3 to 12): autoscaling started the log axis at 1, so the limit
+  // line sat on the frame. The range holds 1 with a 1.5x margin on each side.
+  CompliancePlot all_fail;
+  all_fail.rows = {{"a", 3, 2.5, 4, "fail"}, {"b", 10, 8, 12, "fail"}};
+  auto [low, high] = compliance_x_range(all_fail);
+  CHECK(low == doctest::Approx(1 / 1.5));
+  CHECK(high == doctest::Approx(12 * 1.5));
+  // Every item passing well inside: the line at 1 is the right end, with its margin.
+  CompliancePlot all_pass;
+  all_pass.rows = {{"a", 0.2, 0.1, 0.3, "pass"}, {"b", 0.5, 0, 0.5, "inconclusive"}};
+  std::tie(low, high) = compliance_x_range(all_pass);
+  CHECK(low == doctest::Approx(0.1 / 1.5));  // a zero lower end is left out (log axis)
+  CHECK(high == doctest::Approx(1.5));
 }

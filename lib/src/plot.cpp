@@ -38,6 +38,13 @@ std::string gnuplot_string(std::string_view text) {
   return s + "'";
 }
 
+/// A number for gnuplot -e, as a float literal (gnuplot divides integers as integers).
+std::string gnuplot_number(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.10e", value);
+  return text;
+}
+
 std::string terminal_for(PlotFormat format) {
   switch (format) {
     case PlotFormat::svg: return "svg";
@@ -230,6 +237,19 @@ void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path&
   move_into_place(rendered, output, overwrite);
 }
 
+std::pair<double, double> compliance_x_range(const CompliancePlot& plot) {
+  constexpr double kMargin = 1.5;
+  double low = 1, high = 1;  // the limit line is always in view
+  for (const auto& r : plot.rows) {
+    for (const double v : {r.ratio, r.ratio_low, r.ratio_high}) {
+      if (!(v > 0) || !std::isfinite(v)) continue;
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+  }
+  return {low / kMargin, high * kMargin};
+}
+
 void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::path& output,
                             bool overwrite) {
   const PlotFormat format = plot_format_for(output);
@@ -254,10 +274,12 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
           << r.ratio_high << ' ' << color << " \"" << label << "\"\n";
     }
   }
+  const auto x_range = compliance_x_range(plot);
   const std::string assignments =
       "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
-      "; nrows=" + std::to_string(plot.rows.size());
+      "; nrows=" + std::to_string(plot.rows.size()) + "; xmin=" + gnuplot_number(x_range.first) +
+      "; xmax=" + gnuplot_number(x_range.second);
   run_gnuplot("compliance.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace sigmatau {
@@ -50,6 +51,11 @@ struct CompliancePlot {
   std::string title;
   std::vector<ComplianceRow> rows;
 };
+
+/// The x range of the compliance chart: every positive ratio and its interval, and always the
+/// limit line at 1, with a margin of 1.5x on each side (log axis). Autoscaling put the axis
+/// start at 1 when every item failed, so the limit line sat on the frame.
+std::pair<double, double> compliance_x_range(const CompliancePlot& plot);
 
 /// PSD plot: log-log curves against frequency, with dashed lines (e.g. the noise density as a
 /// one-sided PSD level over its band, the data sheet's level).
