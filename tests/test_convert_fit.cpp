@@ -1,4 +1,7 @@
 // Triads for the filter conversion from a noise-term fit result.
+#include <cstdio>
+#include <string>
+
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/filter_export.hpp"
@@ -66,6 +69,37 @@ TEST_CASE("a triad with neither B nor K kept gets both upper bounds, so a filter
       export_filter_config(convert_noise(triads, o, "fit.json"), ExportFormat::kalibr);
   CHECK(kalibr.find("\ngyroscope_random_walk: 3.0") != std::string::npos);  // the largest axis
   CHECK(kalibr.find("gyroscope_random_walk: not given") == std::string::npos);
+}
+
+TEST_CASE("a rule-of-thumb K above the fit's own bound on K says by how much") {
+  // B kept on every axis, K on none: K comes from B by the rule of thumb, 0.664 B / sqrt(T_ref),
+  // which can exceed the bound the same fit gives for K (the ADIS16405 accelerometers: 3.8x).
+  const auto fit_with_k_bound = [](double k_bound) {
+    char bound[32];
+    std::snprintf(bound, sizeof bound, "%g", k_bound);
+    std::string axes;
+    for (const char* name : {"gx", "gy", "gz"}) {
+      axes += std::string(axes.empty() ? "" : ",") + R"({"name":")" + name +
+              R"(","quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},)" +
+              R"("B":{"value":3e-6,"ci_low":2e-6,"ci_high":4e-6},"K":{"upper_bound":)" +
+              bound + "}}}";
+    }
+    return R"({"channels":[)" + axes + "]}";
+  };
+  ConvertOptions o;
+  o.rate_hz = 100;  // T_ref 100 s: K = 0.664 x 3e-6 / 10 = 1.99e-7 (kFlickerFloorFactor 0.66428)
+  const double k_rule = kFlickerFloorFactor * 3e-6 / 10;
+  const auto triads = triads_from_fit_json(fit_with_k_bound(1e-8), "fit.json");
+  REQUIRE(triads[0].rate_random_walk_bound.has_value());
+  const DiscreteNoise above = convert_noise(triads, o, "fit.json");
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "K is %.3g times that", k_rule / 1e-8);
+  const std::string kalibr = export_filter_config(above, ExportFormat::kalibr);
+  CHECK(kalibr.find("# gyro bias: the fit bounds K below 1e-08 rad/s^2/sqrt(Hz)") != std::string::npos);
+  CHECK(kalibr.find(expected) != std::string::npos);
+  // A bound above the rule's K: nothing to say.
+  const DiscreteNoise below = convert_noise(triads_from_fit_json(fit_with_k_bound(1e-6), "fit.json"), o, "fit.json");
+  CHECK(below.gyro->bias_note.empty());
 }
 
 TEST_CASE("an analyze results.json is read through its fit section") {

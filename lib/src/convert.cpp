@@ -279,6 +279,19 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
       b.sigma_per_step(i) = std::sqrt(b.variance_per_step(i));
     }
     b.q = scaled(b.sigma_per_step, triad.bias_correlation);
+    if (b.model == BiasModel::random_walk && b.source == BiasSource::bias_stability &&
+        triad.rate_random_walk_bound && *triad.rate_random_walk_bound > 0) {
+      const double bound = f * *triad.rate_random_walk_bound;
+      const double ratio = b.random_walk_density.maxCoeff() / bound;
+      if (ratio > 1) {
+        char text[300];
+        std::snprintf(text, sizeof text,
+                      "the fit bounds K below %.4g %s (largest axis), and this rule-of-thumb K is "
+                      "%.3g times that: conservative (a longer --tref lowers it)",
+                      bound, rw_unit(triad.sensor).c_str(), ratio);
+        out.bias_note = text;
+      }
+    }
     out.bias = b;
   }
   return out;
@@ -326,6 +339,7 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
   if (r.bias) {
     const auto& b = *r.bias;
     if (!triad.bias_origin.empty()) o << "  bias: " << triad.bias_origin << "\n";
+    if (!r.bias_note.empty()) o << "  bias: " << r.bias_note << "\n";
     for (int i : axes_of(b.variance_per_step)) {
       const NoiseTerms& t = triad.axes[static_cast<std::size_t>(i)];
       const std::string p = "    " + label(b.variance_per_step, i);

@@ -2,6 +2,7 @@
 // the analyze chain.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 
 #include "sigmatau/convert.hpp"
@@ -94,6 +95,13 @@ std::vector<TriadNoise> triads_from_fit_json(std::string_view json_text, const s
         triad.bias_origin += std::string("; ") + (member == &NoiseTerms::bias_instability ? "B" : "K") +
                              " on axis " + static_cast<char>('x' + a) +
                              ": not detected, its upper bound used";
+      }
+    }
+    if (!kept_on_any_axis(&NoiseTerms::rate_random_walk) && !no_bias_term) {
+      for (const auto& a : axes[s]) {
+        if (!a || !a->upper_bounds.rate_random_walk) continue;
+        triad.rate_random_walk_bound =
+            std::max(triad.rate_random_walk_bound.value_or(0.0), *a->upper_bounds.rate_random_walk);
       }
     }
     if (no_bias_term && triad.bias_from_upper_bound) {

@@ -64,6 +64,7 @@ std::string header(const DiscreteNoise& n, const std::string& format_line) {
       o << "# " << sensor << " bias random walk from the bias stability B by the rule of thumb "
         << "K = B_ds / sqrt(T_ref), B_ds the bias stability (ADEV floor 0.664 B), T_ref = " << num(t->bias->t_ref_s)
         << " s (--tref): not a measured K\n";
+      if (!t->bias_note.empty()) o << "# " << sensor << " bias: " << t->bias_note << "\n";
     } else {
       o << "# " << sensor << " bias Gauss-Markov from the bias stability B with its ADEV minimum "
         << "at tau = " << num(t->bias->tau_min_s) << " s (--tau-min)\n";

@@ -83,6 +83,9 @@ struct TriadNoise {
   std::string bias_origin;
   /// true: on some axis a fit's upper bound stands in for a bias term it did not detect.
   bool bias_from_upper_bound = false;
+  /// A fit that kept B but K on no axis: the largest axis's upper bound on K, against which a
+  /// K made from B by the rule of thumb is compared (it can be several times the bound).
+  std::optional<double> rate_random_walk_bound;
 };
 
 /// The same terms on all three axes.
@@ -158,6 +161,8 @@ struct TriadDiscrete {
   /// headers: a term the fit did not detect, written as its upper bound, is said so.
   std::string bias_origin;
   bool bias_from_upper_bound = false;
+  /// A rule-of-thumb K above the fit's own upper bound on K: says by how much ("" otherwise).
+  std::string bias_note;
   std::optional<WhiteDiscrete> white;
   std::optional<BiasDiscrete> bias;
 };
