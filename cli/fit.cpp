@@ -2,6 +2,7 @@
 // saved `sigmatau adev --format json` result (detected by content).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -301,6 +302,19 @@ Sensor sensor_by_name(const std::string& name, const std::string& input) {
               "unit; choose the sensor columns with --columns");
 }
 
+/// True when every deviation of the curve is 0: the channel never changed (a stuck sensor, or a
+/// column that is not a signal). There is nothing to fit, and a longer log would not help.
+bool constant_curve(const AllanCurve& curve) {
+  return std::all_of(curve.points.begin(), curve.points.end(),
+                     [](const CurvePoint& p) { return p.value.dev == 0; });
+}
+
+void warn_constant(const std::string& input, const std::string& channel) {
+  std::cerr << "sigmatau: warning: " << input << ": channel " << channel
+            << " is constant (every OADEV value is 0: a stuck sensor, or not a signal); left out of "
+               "the fit\n";
+}
+
 void scale_curve(AllanCurve& curve, double factor) {
   for (auto& point : curve.points) {
     point.value.dev *= factor;
@@ -393,6 +407,10 @@ void run_fit(const FitArguments& args) {
                   "it): " + ignored + " would be ignored; leave them out, or fit the log itself");
     }
     for (const auto& saved : saved_curves) {
+      if (constant_curve(saved.curve)) {
+        warn_constant(args.log.input, saved.channel);
+        continue;
+      }
       Channel c;
       c.name = saved.channel;
       c.sensor = sensor_of(saved.channel, saved.sensor);
@@ -418,6 +436,10 @@ void run_fit(const FitArguments& args) {
                         ? oadev_out_of_core(args.log, args.threads)
                         : oadev_in_memory(args.log, args.threads);
     for (std::size_t i = 0; i < log.curves.size(); ++i) {
+      if (constant_curve(log.curves[i])) {
+        warn_constant(args.log.input, log.channel_names[i]);
+        continue;
+      }
       Channel c;
       c.name = log.channel_names[i];
       if (per_sensor) {
@@ -435,6 +457,9 @@ void run_fit(const FitArguments& args) {
     }
   }
 
+  if (channels.empty()) {
+    throw Error(args.log.input + ": every channel is constant: nothing to fit");
+  }
   std::vector<std::string> names;
   std::vector<Sensor> sensors;
   std::vector<const ChannelFit*> fits;

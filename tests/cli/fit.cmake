@@ -49,3 +49,12 @@ sigmatau_cli_test(NAME cli_fit_goodness_table EXIT 0
 # Without --unit the values are SI, and stderr says so.
 sigmatau_cli_test(NAME cli_fit_no_unit_note EXIT 0 STDERR "no --unit: the values are taken as SI"
   ARGS fit ${example} --time-column t --columns gx)
+# A constant channel (a stuck axis) has nothing to fit: it is left out with a warning that says
+# why, and the other axes are fitted (the whole run used to stop, advising a longer log).
+sigmatau_cli_test(NAME cli_fit_constant_channel EXIT 0
+  STDOUT "# gx  joint.*# gz  joint.*gyro triad \\(gx,gz\\)"
+  STDERR "channel gy is constant \\(every OADEV value is 0"
+  ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/cli/stuck_axis_10Hz.csv --time-column t)
+sigmatau_cli_test(NAME cli_fit_every_channel_constant EXIT 2
+  STDERR "every channel is constant: nothing to fit"
+  ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/cli/stuck_axis_10Hz.csv --time-column t --columns gy)
