@@ -58,3 +58,8 @@ sigmatau_cli_test(NAME cli_fit_constant_channel EXIT 0
 sigmatau_cli_test(NAME cli_fit_every_channel_constant EXIT 2
   STDERR "every channel is constant: nothing to fit"
   ARGS fit ${PROJECT_SOURCE_DIR}/tests/data/cli/stuck_axis_10Hz.csv --time-column t --columns gy)
+# B beside the Allan floor 0.664 B, which is what a data sheet prints as bias stability (a
+# STIM300 at its typical 0.5 deg/h fits as B = 0.75 deg/h): the table gives both.
+sigmatau_cli_test(NAME cli_fit_b_with_floor EXIT 0
+  STDOUT "B  bias instability .* deg/h  \\(ADEV floor 0.664 B [=<] [0-9.]+ deg/h, as data sheets print bias stability"
+  ARGS fit ${example} --time-column t --unit deg/s --columns gx --terms N,B,K)
