@@ -47,6 +47,11 @@ TEST_CASE("error: the first problem (the gap) is named with its line, length, co
     CHECK(e.message().find("time stamp gap of 40 ms (4 nominal intervals of 10 ms)") !=
           std::string::npos);
     CHECK(e.message().find("1 gap in all") != std::string::npos);
+    // The duplicated stamp after it is named too (rows out of order show as gaps around a
+    // backwards step, and only the gaps used to be named).
+    CHECK(e.message().find("1 duplicated or backwards stamp, the first at line 12") !=
+          std::string::npos);
+    CHECK(e.message().find("before data row 6") != std::string::npos);
     CHECK(e.message().find("--gaps split") != std::string::npos);
     CHECK(e.message().find("--gaps fill") != std::string::npos);
   }

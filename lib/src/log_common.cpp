@@ -348,11 +348,17 @@ void TimingAccumulator::finish() {
       file_, first->line, 0,
       "time stamp gap of " + ms(first->length_s) + " (" +
           format_seconds_ratio(first->length_s * rate_hz_of(nominal_s_)) +
-          " nominal intervals of " + ms(nominal_s_) + ") before row " +
+          " nominal intervals of " + ms(nominal_s_) + ") before data row " +
           std::to_string(first->row) + "; " + std::to_string(classified_.gap_count) + " gap" +
           (classified_.gap_count == 1 ? "" : "s") + " in all, the largest " +
           ms(classified_.largest_gap_s) + " at line " +
           std::to_string(classified_.largest_gap_line) +
+          // Rows out of order make a gap, a backwards step, and a gap: name the backwards one.
+          (backwards ? std::string(", and ") + std::to_string(non_increasing_) +
+                           (first_ni_step_s_ == 0 ? " duplicated or backwards" : " backwards") +
+                           " stamp" + (non_increasing_ == 1 ? "" : "s") + ", the first at line " +
+                           std::to_string(first_ni_line_) + " (rows out of order?)"
+                     : std::string()) +
           "; use --gaps split to analyse the contiguous segments apart, --gaps fill to "
           "interpolate the missing samples, or --gaps report to analyse the log as if "
           "contiguous");

@@ -26,7 +26,7 @@ sigmatau_cli_test(NAME cli_gaps_default_is_error EXIT 2
   STDERR "gap.csv:10: .*time stamp gap of 40 ms.*--gaps split.*--gaps fill.*--gaps report"
   ARGS adev ${gap_small} --time-column t_ms --time-unit ms)
 sigmatau_cli_test(NAME cli_gaps_default_error_restart EXIT 2
-  STDERR "restart.csv:1002: .*time stamp gap of 5\\.01 s.*before row 1000"
+  STDERR "restart.csv:1002: .*time stamp gap of 5\\.01 s.*before data row 1000"
   ARGS adev ${gap_log} --time-column t_ms --time-unit ms)
 # A duplicated stamp is an error by default too (gap.csv's first problem is its gap, so a log
 # whose only problem is the duplicate: the catalogue's duplicate_time_fill.csv).
