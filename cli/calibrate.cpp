@@ -7,6 +7,7 @@
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/calibrate.hpp"
+#include "sigmatau/calibrate_checks.hpp"
 #include "sigmatau/calibrate_log.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -46,6 +47,7 @@ struct ColumnPlan {
   std::vector<std::size_t> column;  // per row value: ax ay az [gx gy gz] [temp]
   bool gyro = false, temperature = false;
   double accel_factor = 1, gyro_factor = 1;
+  std::string accel_unit, gyro_unit;  // as given (or the default), for the unit checks' messages
   Unit temp_unit, kelvin;  // temperature: (v * factor + offset - K offset) / K factor (convert())
 };
 
@@ -72,6 +74,8 @@ ColumnPlan plan_columns(const CalibrateArguments& a, const std::vector<std::stri
   const std::string accel_unit = increments && a.accel_unit == "m/s^2" ? "m/s" : a.accel_unit;
   const std::string gyro_unit = increments && a.gyro_unit == "rad/s" ? "rad" : a.gyro_unit;
   plan.accel_factor = parse_unit_as(accel_unit, accel_dim, "--accel-unit").factor;
+  plan.accel_unit = accel_unit;
+  plan.gyro_unit = gyro_unit;
   for (const auto& n : names(a.accel_columns, "a", "--accel"))
     plan.column.push_back(find_column(channel_names, a.log.input, n, "--accel"));
   const auto gyro_names = names(a.gyro_columns, "g", "--gyro");
@@ -114,7 +118,17 @@ void append_rows(const ColumnPlan& plan, const std::vector<std::vector<double>>&
   log.append(row_buffer);
 }
 
+/// Fewest distinct orientations that can ever determine the accelerometer: its 9 unknowns
+/// (3 gains, 3 cross-axis terms, 3 biases) meet one equation per orientation (gravity's magnitude).
+constexpr int kMinPossibleOrientations = 9;
+
 void run_calibrate(const CalibrateArguments& a) {
+  if (a.min_orientations < kMinPossibleOrientations || a.min_orientations > 1000)
+    throw Error("--min-orientations " + std::to_string(a.min_orientations) +
+                ": must be 9 to 1000. Gravity's magnitude gives one equation per orientation and "
+                "the accelerometer has 9 unknowns (3 gains, 3 cross-axis terms, 3 biases), so "
+                "fewer than 9 distinct orientations can never determine them (the classic 6 faces "
+                "need at least 3 more positions, e.g. tilted 45 deg between two faces)");
   if (a.format != "table" && a.format != "json")
     throw Error("--format must be table or json, got '" + a.format + "'");
   if (!a.log.unit.empty())
@@ -128,12 +142,13 @@ void run_calibrate(const CalibrateArguments& a) {
   // The rows go into a CalibrationLog: in memory up to --memory, beyond it in a temporary file.
   // --gaps fill needs the whole log in memory to interpolate (read_log), as the other verbs do.
   std::unique_ptr<CalibrationLog> log;
+  ColumnPlan used;
   double rate_hz = 0;
   std::vector<double> row_buffer;
   const auto start = [&](const std::vector<std::string>& channel_names) {
-    const ColumnPlan plan = plan_columns(a, channel_names, increments);
-    log = std::make_unique<CalibrationLog>(plan.gyro, plan.temperature, memory);
-    return plan;
+    used = plan_columns(a, channel_names, increments);
+    log = std::make_unique<CalibrationLog>(used.gyro, used.temperature, memory);
+    return used;
   };
   bool noted = false;
   const auto note_spill = [&] {
@@ -190,7 +205,20 @@ void run_calibrate(const CalibrateArguments& a) {
       throw Error("--reference-temperature: expected a temperature, e.g. \"25 degC\"");
     o.reference_temperature_k = q.value_si;
   }
-  const CalibrationResult result = calibrate(*log, rate_hz, increments, o);
+  const std::string path = a.log.input == "-" ? "<stdin>" : a.log.input;
+  // A column in a wrong unit is named with the unit the user gave, before the calibration
+  // (whose own magnitude check knows only SI).
+  check_accel_unit(median_accel_magnitude(*log, rate_hz, increments), o.gravity, used.accel_unit,
+                   used.accel_factor, increments, path);
+  CalibrationResult result;
+  try {
+    result = calibrate(*log, rate_hz, increments, o);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());  // the library's reasons do not know the file
+  }
+  check_temperature_unit(result, a.temp_unit, path);
+  if (used.gyro) check_gyro_unit(result, used.gyro_unit, path);
+  for (const auto& n : calibration_notes(result)) std::cerr << "sigmatau: note: " << n << "\n";
   const std::string text = a.format == "json" ? calibration_json(result) : calibration_table(result);
   if (a.output.empty()) {
     std::cout << text;
@@ -224,9 +252,9 @@ void add_calibrate_command(CLI::App& app) {
                       "T0 of the bias temperature model")
       ->capture_default_str();
   command->add_option("--min-orientations", args->min_orientations,
-                      "distinct orientations required")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+                      "distinct orientations required (9 to 1000: fewer never determine the "
+                      "accelerometer)")
+      ->capture_default_str();
   command->add_option("--ci", args->confidence, "two-sided confidence level of the intervals")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | json")->capture_default_str();

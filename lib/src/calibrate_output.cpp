@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sigmatau/calibrate.hpp"
+#include "sigmatau/calibrate_checks.hpp"
 
 namespace sigmatau {
 namespace {
@@ -129,8 +130,15 @@ std::string calibration_json(const CalibrationResult& r) {
   doc["accelerometer"]["convention"] =
       "A lower triangular: frame x along the x sensing axis, y in the x-y sensing plane; "
       "identifiable: s_x, s_y, s_z, m_yx, m_zx, m_zy, b; m_xy, m_xz, m_yz fixed at 0 (null)";
+  // The temperature at which each bias holds: T0 with a temperature model, else the mean.
+  const auto bias_at = [&](const TriadCalibration& t, json& j) {
+    if (r.has_temperature)
+      j["bias_temperature_k"] = t.temperature ? r.reference_temperature_k : mean_interval_temperature_k(r);
+  };
+  bias_at(r.accel, doc["accelerometer"]);
   if (r.gyro) {
     doc["gyroscope"] = triad_json(*r.gyro, "rad/s", r.confidence);
+    bias_at(*r.gyro, doc["gyroscope"]);
     doc["gyroscope"]["convention"] =
         "all 9 terms of A, in the accelerometer frame (see accelerometer.convention)";
   }
@@ -159,9 +167,12 @@ std::string calibration_json(const CalibrationResult& r) {
     doc["temperature"] = {{"reference_k", r.reference_temperature_k},
                           {"min_k", r.temperature_min_k},
                           {"max_k", r.temperature_max_k},
+                          {"mean_k", mean_interval_temperature_k(r)},
                           {"modelled", r.accel.temperature.has_value() ||
                                            (r.gyro && r.gyro->temperature.has_value())}};
   }
+  const std::vector<std::string> notes = calibration_notes(r);
+  if (!notes.empty()) doc["notes"] = notes;
   return doc.dump(2) + "\n";
 }
 
@@ -172,6 +183,13 @@ std::string calibration_table(const CalibrationResult& r) {
                 "# %zu static intervals, %d orientations, gravity %.6g m/s^2, %g%% intervals\n",
                 r.detection.intervals.size(), r.orientations, r.gravity, 100 * r.confidence);
   out << line;
+  if (r.has_temperature) {
+    std::snprintf(line, sizeof line,
+                  "# temperature %.2f to %.2f degC over the static intervals (mean %.2f degC)\n",
+                  r.temperature_min_k - 273.15, r.temperature_max_k - 273.15,
+                  mean_interval_temperature_k(r) - 273.15);
+    out << line;
+  }
   const auto triad = [&](const TriadCalibration& t, const char* name, const char* unit, double k,
                          const char* tunit) {
     out << "\n" << name << "\n";
@@ -197,8 +215,19 @@ std::string calibration_table(const CalibrationResult& r) {
           out << line;
         }
     } else {
-      out << "  matrix not estimated: " << t.note << "\n";
+      out << "  matrix not estimated (see the notes below)\n";
     }
+    // At which temperature the bias holds: T0 with a temperature model, else the log's mean.
+    if (t.temperature)
+      std::snprintf(line, sizeof line, "  bias b at T0 = %.2f degC (temperature model below):\n",
+                    r.reference_temperature_k - 273.15);
+    else if (r.has_temperature)
+      std::snprintf(line, sizeof line,
+                    "  bias b at the log's mean temperature %.2f degC (no temperature model):\n",
+                    mean_interval_temperature_k(r) - 273.15);
+    else
+      std::snprintf(line, sizeof line, "  bias b (no temperature column):\n");
+    out << line;
     for (int i = 0; i < 3; ++i) {
       const auto& b = t.bias[static_cast<std::size_t>(i)];
       std::snprintf(line, sizeof line, "  bias %c            %+11.5g %s  [%+11.5g, %+11.5g]\n",
@@ -223,12 +252,23 @@ std::string calibration_table(const CalibrationResult& r) {
   triad(r.accel, "accelerometer (m_xy, m_xz, m_yz not identifiable: 0 by convention)", "mg",
         kMgPerMps2, "mg/degC");
   if (r.gyro) triad(*r.gyro, "gyroscope (in the accelerometer frame)", "deg/s", kDegPerRad, "deg/s/degC");
-  out << "\ncompensation: x = A^-1 (y - b(T)), b(T) = b + c1 (T - T0) [+ c2 (T - T0)^2]";
-  if (r.has_temperature) {
+  const bool modelled = r.accel.temperature || (r.gyro && r.gyro->temperature);
+  if (modelled) {
+    out << "\ncompensation: x = A^-1 (y - b(T)), b(T) = b + c1 (T - T0) [+ c2 (T - T0)^2]";
     std::snprintf(line, sizeof line, ", T0 = %.2f degC", r.reference_temperature_k - 273.15);
     out << line;
+    if (!r.accel.temperature || (r.gyro && !r.gyro->temperature))
+      out << " (c1 = c2 = 0 for the " << (r.accel.temperature ? "gyroscope" : "accelerometer")
+          << ", whose b holds at the mean temperature)";
+  } else {
+    out << "\ncompensation: x = A^-1 (y - b)";
   }
   out << "\n";
+  const std::vector<std::string> notes = calibration_notes(r);
+  if (!notes.empty()) {
+    out << "\nnotes:\n";
+    for (const auto& n : notes) out << "  " << n << "\n";
+  }
   return out.str();
 }
 

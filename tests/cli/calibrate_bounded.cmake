@@ -83,7 +83,7 @@ sigmatau_cli_test(NAME cli_calibrate_temp_unit_without_column EXIT 2 WORKING_DIR
   STDERR "--temp-unit: expected temperature \\(e\\.g\\. K\\), found length/time"
   ARGS calibrate static.csv --time-column t --temp-unit m/s)
 sigmatau_cli_test(NAME cli_calibrate_min_orientations_range EXIT 2 WORKING_DIRECTORY ${cal_bounded_dir}
-  STDERR "--min-orientations: Value -1 not in range 1 to 1000"
+  STDERR "--min-orientations -1: must be 9 to 1000"
   ARGS calibrate static.csv --time-column t --min-orientations -1)
 set_tests_properties(cli_calibrate_temp_unit_without_column cli_calibrate_min_orientations_range
                      PROPERTIES DEPENDS cli_calibrate_one_position_sim)

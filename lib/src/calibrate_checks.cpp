@@ -1,0 +1,163 @@
+// Plausibility checks of a calibration (unit mix-ups) and the notes beside its numbers
+// (calibrate_checks.hpp).
+#include "sigmatau/calibrate_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+#include "sigmatau/error.hpp"
+#include "sigmatau/units.hpp"
+
+namespace sigmatau {
+namespace {
+
+/// Histogram of log10 of the magnitude [m/s^2]: bins of 1e-3 over [1e-8, 1e8]; smaller values
+/// (a zero row) fall into the first bin, larger into the last.
+constexpr double kLogLow = -8, kLogHigh = 8, kLogStep = 1e-3;
+
+/// Temperature span below which calibrate() fits no temperature dependence [K] (calibrate.cpp,
+/// kMinTemperatureSpan): the coefficient would be an extrapolation of noise.
+constexpr double kMinTemperatureSpanK = 1.0;
+
+std::string prefixed(const std::string& path, const std::string& text) {
+  return path.empty() ? text : path + ": " + text;
+}
+
+}  // namespace
+
+double median_accel_magnitude(const CalibrationLog& log, double rate_hz, bool increments) {
+  const std::int64_t rows = log.rows();
+  if (rows == 0) return 0;
+  const auto bins = static_cast<std::size_t>(std::lround((kLogHigh - kLogLow) / kLogStep)) + 1;
+  std::vector<std::int64_t> count(bins, 0);
+  const int c = log.channels();
+  const double scale = increments ? rate_hz : 1.0;
+  log.read(0, rows, [&](std::int64_t, std::int64_t n, const double* v) {
+    for (std::int64_t r = 0; r < n; ++r) {
+      const double* row = v + r * c;
+      const double m = std::hypot(row[0], row[1], row[2]) * scale;
+      const double x = m > 0 ? (std::log10(m) - kLogLow) / kLogStep : 0.0;
+      const auto bin = static_cast<std::size_t>(std::clamp(x, 0.0, static_cast<double>(bins - 1)));
+      ++count[bin];
+    }
+  });
+  const std::int64_t half = (rows + 1) / 2;  // the lower median's rank (1-based)
+  std::int64_t seen = 0;
+  std::size_t bin = 0;
+  for (; bin < bins; ++bin) {
+    seen += count[bin];
+    if (seen >= half) break;
+  }
+  return std::pow(10.0, kLogLow + (static_cast<double>(bin) + 0.5) * kLogStep);
+}
+
+void check_accel_unit(double median_magnitude, double gravity, const std::string& unit_given,
+                      double unit_factor, bool increments, const std::string& path) {
+  const double ratio = median_magnitude / gravity;
+  if (ratio <= kMaxAccelMagnitudeFactor && ratio >= 1 / kMaxAccelMagnitudeFactor) return;
+  // The columns' SI factor would be unit_factor / ratio; name a common unit within 20 % of it.
+  std::string suggestion;
+  if (!increments) {
+    for (const char* candidate : {"m/s^2", "g", "mg", "ug", "cm/s^2", "mm/s^2", "ft/s^2"}) {
+      const double f = parse_unit(candidate).factor;
+      if (std::abs(f * ratio / unit_factor - 1) <= 0.2 && candidate != unit_given) {
+        suggestion = std::string(": they look like ") + candidate + " (--accel-unit " + candidate + ")";
+        break;
+      }
+    }
+  }
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "calibrate: the median accelerometer magnitude is %.4g x the gravity %.6g m/s^2 "
+                "with the columns read in %s (--accel-unit %s)%s; a calibration log, mostly "
+                "static, has a median within a factor %g of the gravity",
+                ratio, gravity, unit_given.c_str(), unit_given.c_str(),
+                suggestion.empty() ? ": is that their unit?" : suggestion.c_str(),
+                kMaxAccelMagnitudeFactor);
+  throw Error(prefixed(path, text));
+}
+
+void check_gyro_unit(const CalibrationResult& r, const std::string& unit_given,
+                     const std::string& path) {
+  if (!r.gyro || !r.gyro->matrix_estimated || r.gyro->dof <= 0) return;
+  const TriadCalibration& g = *r.gyro;
+  const double chi2_dof = g.chi2 / g.dof;
+  if (!(g.residual_rms > kMaxGyroRotationMisfit && chi2_dof > kMinGyroMisfitChi2PerDof)) return;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "calibrate: the gyroscope misses the rotations between the static intervals by "
+                "%.3g rad (%.3g deg) rms, chi^2/dof %.3g: a working gyroscope in the right unit "
+                "misses them by under %.2g rad. Are the gyro columns in %s (--gyro-unit %s; deg/s "
+                "read as rad/s turns every rotation 57 times too far)? Otherwise the gyroscope "
+                "saturated during the rotations, or the sample rate is wrong (--time-column, "
+                "--rate)",
+                g.residual_rms, g.residual_rms * 180 / 3.141592653589793, chi2_dof,
+                kMaxGyroRotationMisfit, unit_given.c_str(), unit_given.c_str());
+  throw Error(prefixed(path, text));
+}
+
+void check_temperature_unit(const CalibrationResult& r, const std::string& unit_given,
+                            const std::string& path) {
+  if (!r.has_temperature) return;
+  const bool low = r.temperature_min_k < kMinImuTemperatureK;
+  const bool high = r.temperature_max_k > kMaxImuTemperatureK;
+  if (!low && !high) return;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "calibrate: the temperature column, read in %s (--temp-unit %s), gives %.5g K to "
+                "%.5g K (%.5g to %.5g degC) over the static intervals, %s any IMU's range "
+                "(%g K to %g K)%s",
+                unit_given.c_str(), unit_given.c_str(), r.temperature_min_k, r.temperature_max_k,
+                r.temperature_min_k - 273.15, r.temperature_max_k - 273.15,
+                low ? "below" : "above", kMinImuTemperatureK, kMaxImuTemperatureK,
+                low ? ": is the column in degC (--temp-unit degC)?"
+                    : ": is the column in K (--temp-unit K) or in raw counts?");
+  throw Error(prefixed(path, text));
+}
+
+double mean_interval_temperature_k(const CalibrationResult& r) {
+  if (!r.has_temperature || r.detection.intervals.empty()) return 0;
+  double sum = 0;
+  for (const auto& s : r.detection.intervals) sum += s.temperature_k;
+  return sum / static_cast<double>(r.detection.intervals.size());
+}
+
+std::vector<std::string> calibration_notes(const CalibrationResult& r) {
+  std::vector<std::string> notes;
+  const double span = r.temperature_max_k - r.temperature_min_k;
+  const auto triad = [&](const TriadCalibration& t, const char* name) {
+    if (!t.matrix_estimated)
+      notes.push_back(std::string(name) + ": matrix not estimated, only the bias: " + t.note);
+    if (!r.has_temperature || t.temperature) return;
+    char reason[160];
+    if (span < kMinTemperatureSpanK)
+      std::snprintf(reason, sizeof reason,
+                    "the static intervals span only %.3g K of temperature (under %g K)", span,
+                    kMinTemperatureSpanK);
+    const std::string why = span < kMinTemperatureSpanK ? std::string(reason)
+                            : t.matrix_estimated && !t.note.empty()
+                                ? t.note
+                                : std::string("the static intervals do not determine it");
+    char where[160];
+    std::snprintf(where, sizeof where,
+                  "its bias holds at the log's mean temperature %.2f degC, not at T0 = %.2f degC",
+                  mean_interval_temperature_k(r) - 273.15, r.reference_temperature_k - 273.15);
+    std::string note = std::string(name) + ": no bias temperature model (" + why + "); " + where;
+    if (span >= kMinTemperatureSpanK) {
+      std::snprintf(where, sizeof where,
+                    "; its drift over the %.3g K the log spans stays in the residuals and can "
+                    "pull the other parameters",
+                    span);
+      note += where;
+    }
+    notes.push_back(note);
+  };
+  triad(r.accel, "accelerometer");
+  if (r.gyro) triad(*r.gyro, "gyroscope");
+  return notes;
+}
+
+}  // namespace sigmatau
