@@ -262,82 +262,29 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
   TriadCalibration gyro;
   gyro.static_intervals = static_cast<int>(iv.size());
   const Eigen::Matrix3d ainv = accel.matrix.inverse();
-  const int n = static_cast<int>(iv.size());
   std::vector<double> x;
-  for (const auto& s : iv) x.push_back(s.temperature_k - t0);
-  struct BiasModel {
-    std::array<detail::PolyFit, 3> fit;
-    std::array<int, 3> degree{};
-    std::array<BiasTemperatureAxis, 3> axes{};
-    double chi2 = 0;
-    Eigen::Vector3d at(double dt) const {
-      Eigen::Vector3d b;
-      for (int a = 0; a < 3; ++a) {
-        b[a] = 0;
-        for (int d = 0; d <= degree[static_cast<std::size_t>(a)]; ++d)
-          b[a] += fit[static_cast<std::size_t>(a)].c[d] * std::pow(dt, d);
-      }
-      return b;
-    }
-  };
-  // Earth rate per interval: the vertical part (known with a latitude) is removed; the rest is
-  // an unknown-heading term whose variance enters the weights.
-  const auto bias_model = [&](const Eigen::Matrix3d& g) {
-    std::array<std::vector<double>, 3> y, var;
-    for (const auto& s : iv) {
-      const Eigen::Vector3d f =
-          ainv * (s.accel_mean - detail::accel_bias_at(accel.params, accel.degree, s.temperature_k, t0));
-      const Eigen::Vector3d down = -f.normalized();
-      Eigen::Vector3d earth = Eigen::Vector3d::Zero();
-      Eigen::Matrix3d earth_cov;
-      if (o.latitude_rad) {
-        earth = g * (-kEarthRate * std::sin(*o.latitude_rad) * down);
-        const double h = kEarthRate * std::cos(*o.latitude_rad);
-        earth_cov = g * (h * h / 2 * (Eigen::Matrix3d::Identity() - down * down.transpose())) * g.transpose();
-      } else {
-        earth_cov = g * (kEarthRate * kEarthRate / 3 * Eigen::Matrix3d::Identity()) * g.transpose();
-      }
-      for (int a = 0; a < 3; ++a) {
-        y[static_cast<std::size_t>(a)].push_back(s.gyro_mean[a] - earth[a]);
-        var[static_cast<std::size_t>(a)].push_back(s.gyro_cov(a, a) + earth_cov(a, a));
-      }
-    }
-    BiasModel m;
-    for (int a = 0; a < 3; ++a) {
-      const auto ua = static_cast<std::size_t>(a);
-      int degree = 0;
-      detail::PolyFit best = detail::weighted_polynomial(x, y[ua], var[ua], 0);
-      if (use_temperature) {
-        const detail::PolyFit lin = detail::weighted_polynomial(x, y[ua], var[ua], 1);
-        m.axes[ua].aicc_linear = detail::aicc(lin.chi2, 2, n);
-        m.axes[ua].aicc_quadratic = INFINITY;
-        best = lin;
-        degree = 1;
-        if (n > 4) {
-          try {
-            const detail::PolyFit quad = detail::weighted_polynomial(x, y[ua], var[ua], 2);
-            m.axes[ua].aicc_quadratic = detail::aicc(quad.chi2, 3, n);
-            if (m.axes[ua].aicc_quadratic < m.axes[ua].aicc_linear) {
-              best = quad;
-              degree = 2;
-            }
-          } catch (const Error&) {
-          }
-        }
-      }
-      best.covariance *= detail::covariance_scale(best.chi2, n - degree - 1);
-      m.chi2 += best.chi2;
-      m.fit[ua] = best;
-      m.degree[ua] = degree;
-    }
-    return m;
-  };
+  std::vector<Eigen::Vector3d> down;
+  for (const auto& s : iv) {
+    x.push_back(s.temperature_k - t0);
+    down.push_back(-(ainv * (s.accel_mean - detail::accel_bias_at(accel.params, accel.degree,
+                                                                  s.temperature_k, t0)))
+                        .normalized());
+  }
+  // The Earth rate in each interval: the intervals' attitudes relative to the first, chained
+  // from the integrated rotations, carry one unknown Earth rate w_0 into every interval
+  // (calibrate_earth_rate.cpp). First pass: G = I and each whole reading as the bias in the
+  // integration (the Earth rate ignored across a rotation: an attitude error of ~Omega times the
+  // rotation's duration, ~1e-4 rad, which moves the projected Earth rate by ~1e-8 rad/s).
+  std::vector<Eigen::Vector3d> readings;
+  for (const auto& s : iv) readings.push_back(s.gyro_mean);
   Eigen::Matrix3d g = Eigen::Matrix3d::Identity();
+  const detail::GyroBiasFit first =
+      detail::fit_gyro_bias(iv, down, detail::interval_attitudes(in, iv, g, readings), g,
+                            o.latitude_rad, x, use_temperature);
+  std::vector<Eigen::Vector3d> interval_bias;
+  for (double dt : x) interval_bias.push_back(first.at(dt));
   Eigen::MatrixXd gcov = Eigen::MatrixXd::Zero(9, 9);
   try {
-    const BiasModel first = bias_model(g);
-    std::vector<Eigen::Vector3d> interval_bias;
-    for (double dt : x) interval_bias.push_back(first.at(dt));
     const detail::GyroMatrixFit f = detail::fit_gyroscope_matrix(in, iv, accel, t0, interval_bias,
                                                                  o.rotation_memory_bytes);
     g = f.matrix;
@@ -366,30 +313,36 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
       }
     gyro.invariant = g * g.transpose();
   }
-  const BiasModel final_bias = bias_model(g);
+  const detail::GyroBiasFit final_bias = detail::fit_gyro_bias(
+      iv, down, detail::interval_attitudes(in, iv, g, interval_bias), g, o.latitude_rad, x,
+      use_temperature);
+  if (final_bias.heading) {
+    gyro.earth_rate = final_bias.earth;
+    gyro.earth_rate_covariance = final_bias.earth_cov;
+  }
   std::array<BiasTemperatureAxis, 3> gyro_axes = final_bias.axes;
   std::vector<std::string> bias_names;
-  std::vector<double> bias_var;
   const double chi2_total = final_bias.chi2;
+  Eigen::Index k = 0;
   for (int a = 0; a < 3; ++a) {
     const auto ua = static_cast<std::size_t>(a);
-    const detail::PolyFit& best = final_bias.fit[ua];
+    const Eigen::VectorXd& c = final_bias.c[ua];
     const int degree = final_bias.degree[ua];
-    gyro.bias[ua] = make_value(best.c[0], std::sqrt(best.covariance(0, 0)), o.confidence);
+    const auto se = [&](int j) { return std::sqrt(final_bias.covariance(k + j, k + j)); };
+    gyro.bias[ua] = make_value(c[0], se(0), o.confidence);
     if (use_temperature) {
       gyro_axes[ua].degree = degree;
-      gyro_axes[ua].linear = make_value(best.c[1], std::sqrt(best.covariance(1, 1)), o.confidence);
-      if (degree == 2)
-        gyro_axes[ua].quadratic = make_value(best.c[2], std::sqrt(best.covariance(2, 2)), o.confidence);
+      gyro_axes[ua].linear = make_value(c[1], se(1), o.confidence);
+      if (degree == 2) gyro_axes[ua].quadratic = make_value(c[2], se(2), o.confidence);
     }
-    for (int k = 0; k <= degree; ++k) {
-      bias_names.push_back(k == 0 ? std::string("b_") + "xyz"[a]
-                                  : "c" + std::to_string(k) + "_" + "xyz"[a]);
-      bias_var.push_back(best.covariance(k, k));
-    }
+    for (int j = 0; j <= degree; ++j)
+      bias_names.push_back(j == 0 ? std::string("b_") + "xyz"[a]
+                                  : "c" + std::to_string(j) + "_" + "xyz"[a]);
+    k += degree + 1;
   }
   if (use_temperature) gyro.temperature = gyro_axes;
-  // Covariance: G's 9 entries (row-major) then the bias model (independent estimates).
+  // Covariance: G's 9 entries (row-major) then the bias model (the two estimated separately; the
+  // bias coefficients of the three axes are correlated through the shared Earth rate).
   const auto nb = static_cast<Eigen::Index>(bias_names.size());
   const Eigen::Index ng = gyro.matrix_estimated ? 9 : 0;
   gyro.covariance = Eigen::MatrixXd::Zero(ng + nb, ng + nb);
@@ -399,10 +352,8 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
       for (int j = 0; j < 3; ++j)
         gyro.parameter_names.push_back(std::string("G_") + "xyz"[i] + "xyz"[j]);
   }
-  for (Eigen::Index k = 0; k < nb; ++k) {
-    gyro.covariance(ng + k, ng + k) = bias_var[static_cast<std::size_t>(k)];
-    gyro.parameter_names.push_back(bias_names[static_cast<std::size_t>(k)]);
-  }
+  gyro.covariance.bottomRightCorner(nb, nb) = final_bias.covariance;
+  for (const auto& name : bias_names) gyro.parameter_names.push_back(name);
   if (!gyro.matrix_estimated) {
     gyro.chi2 = chi2_total;
   }

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "calibrate_internal.hpp"
 #include "sigmatau/error.hpp"
@@ -67,6 +68,61 @@ void directions(const std::vector<StaticInterval>& iv, const AccelFit& accel, co
 
 }  // namespace
 
+void rotation_steps(const CalibrationSamples& in, const StaticInterval& a, const StaticInterval& b,
+                    const Eigen::Vector3d& ba, const Eigen::Vector3d& bb,
+                    const std::function<void(const Eigen::Vector3d&)>& step) {
+  const double tau0 = 1 / in.rate_hz();
+  const bool increments = in.increments();
+  // Static reading interpolated linearly in time between the two interval centres.
+  const double ta = (a.start_s + a.end_s) / 2, tb = (b.start_s + b.end_s) / 2;
+  const auto lam = [&](double t) { return (t - ta) / (tb - ta); };
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+  in.for_each(a.last, b.first + 1, [&](const SampleRows& rows) {
+    for (std::int64_t j = 0; j < rows.count; ++j) {
+      const std::int64_t i = rows.first + j;
+      const Eigen::Vector3d sample(rows.value(kGyroChannel, j), rows.value(kGyroChannel + 1, j),
+                                   rows.value(kGyroChannel + 2, j));
+      if (!increments) {
+        // Trapezoid on rate samples e..s (step i - 1 -> i).
+        if (i > a.last) {
+          const double t1 = static_cast<double>(i - 1) * tau0, t2 = t1 + tau0;
+          const double l1 = lam(t1), l2 = lam(t2);
+          const Eigen::Vector3d z1 = previous - ((1 - l1) * ba + l1 * bb);
+          const Eigen::Vector3d z2 = sample - ((1 - l2) * ba + l2 * bb);
+          step((z1 + z2) / 2 * tau0);
+        }
+        previous = sample;
+      } else if (i > a.last && i < b.first) {
+        // Sample i integrates over the interval before t_i + tau0.
+        const double l = lam((static_cast<double>(i) + 0.5) * tau0);
+        step(sample - ((1 - l) * ba + l * bb) * tau0);
+      }
+    }
+  });
+}
+
+std::vector<Eigen::Matrix3d> interval_attitudes(const CalibrationSamples& in,
+                                                const std::vector<StaticInterval>& iv,
+                                                const Eigen::Matrix3d& g,
+                                                const std::vector<Eigen::Vector3d>& interval_bias) {
+  const double tau0 = 1 / in.rate_hz();
+  const Eigen::Matrix3d ginv = g.inverse();
+  std::vector<Eigen::Matrix3d> c(iv.size(), Eigen::Matrix3d::Identity());
+  for (std::size_t k = 0; k + 1 < iv.size(); ++k) {
+    // R_k as in the matrix fit (relative to the local level: interval k's Earth rate, turned
+    // into the current body frame, is removed at each step). Every pair is chained, however
+    // small its rotation: an interval split by the detector gives R_k = I (no steps).
+    const Eigen::Vector3d earth = ginv * (iv[k].gyro_mean - interval_bias[k]);
+    Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+    rotation_steps(in, iv[k], iv[k + 1], interval_bias[k], interval_bias[k + 1],
+                   [&](const Eigen::Vector3d& dz) {
+                     rot = rot * exp_so3(ginv * dz - rot.transpose() * earth * tau0);
+                   });
+    c[k + 1] = c[k] * rot;
+  }
+  return c;
+}
+
 GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vector<StaticInterval>& iv,
                                    const AccelFit& accel, double t0,
                                    const std::vector<Eigen::Vector3d>& interval_bias,
@@ -99,37 +155,11 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& in, const std::vect
     r.from = static_cast<int>(k);
     r.step_s = tau0;
     const Eigen::Vector3d& ba = interval_bias[k];
-    const Eigen::Vector3d& bb = interval_bias[k + 1];
     r.earth = a.gyro_mean - ba;
-    // Static reading interpolated linearly in time between the two interval centres.
-    const double ta = (a.start_s + a.end_s) / 2, tb = (b.start_s + b.end_s) / 2;
-    const auto lam = [&](double t) { return (t - ta) / (tb - ta); };
     const double sigma2 = (a.gyro_sample_cov.trace() + b.gyro_sample_cov.trace()) / 6;
     // Only the samples of this rotation are read; its steps go to the store.
     r.begin = store.rows();
-    Eigen::Vector3d previous = Eigen::Vector3d::Zero();
-    in.for_each(a.last, b.first + 1, [&](const SampleRows& rows) {
-      for (std::int64_t j = 0; j < rows.count; ++j) {
-        const std::int64_t i = rows.first + j;
-        const Eigen::Vector3d sample(rows.value(kGyroChannel, j), rows.value(kGyroChannel + 1, j),
-                                     rows.value(kGyroChannel + 2, j));
-        if (!increments) {
-          // Trapezoid on rate samples e..s (step i - 1 -> i).
-          if (i > a.last) {
-            const double t1 = static_cast<double>(i - 1) * tau0, t2 = t1 + tau0;
-            const double l1 = lam(t1), l2 = lam(t2);
-            const Eigen::Vector3d z1 = previous - ((1 - l1) * ba + l1 * bb);
-            const Eigen::Vector3d z2 = sample - ((1 - l2) * ba + l2 * bb);
-            add_step((z1 + z2) / 2 * tau0);
-          }
-          previous = sample;
-        } else if (i > a.last && i < b.first) {
-          // Sample i integrates over the interval before t_i + tau0.
-          const double l = lam((static_cast<double>(i) + 0.5) * tau0);
-          add_step(sample - ((1 - l) * ba + l * bb) * tau0);
-        }
-      }
-    });
+    rotation_steps(in, a, b, ba, interval_bias[k + 1], add_step);
     flush_steps();
     r.end = store.rows();
     r.white_var = increments ? sigma2 * tau0 * tau0 * static_cast<double>(r.end - r.begin)

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -212,6 +213,54 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& samples,
                                    const AccelFit& accel, double reference_temperature_k,
                                    const std::vector<Eigen::Vector3d>& interval_bias,
                                    std::int64_t step_memory_bytes);
+
+/// Calls step(dz) for each integration step of the gyroscope from the last sample of interval a
+/// to the first of interval b: rate samples by the trapezoid, or the increments in between, less
+/// the bias interpolated linearly in time from ba (at a's centre) to bb (at b's) [rad, raw axes].
+void rotation_steps(const CalibrationSamples& samples, const StaticInterval& a,
+                    const StaticInterval& b, const Eigen::Vector3d& ba, const Eigen::Vector3d& bb,
+                    const std::function<void(const Eigen::Vector3d&)>& step);
+
+/// Attitude C_k of every static interval relative to the first (C_0 = I; a vector v_k in the
+/// frame of interval k is C_k v_k in the frame of interval 0), chained from the calibrated
+/// rotations R_k between consecutive intervals, relative to the local level, as in
+/// fit_gyroscope_matrix: C_{k+1} = C_k R_k. `g` the gyroscope matrix, `interval_bias` the bias
+/// at each interval [rad/s].
+std::vector<Eigen::Matrix3d> interval_attitudes(const CalibrationSamples& samples,
+                                                const std::vector<StaticInterval>& intervals,
+                                                const Eigen::Matrix3d& g,
+                                                const std::vector<Eigen::Vector3d>& interval_bias);
+
+/// The gyroscope's bias model (calibrate_earth_rate.cpp): per axis b0 [+ c1 dT [+ c2 dT^2]]
+/// (rad/s, rad/s/K, rad/s/K^2), fitted to the static readings together with the Earth rate.
+struct GyroBiasFit {
+  /// true: the Earth rate of interval k is G C_k^T w_0 with w_0 (the Earth rate in the frame of
+  /// interval 0) estimated; false: its horizontal part (all of it without a latitude) entered
+  /// each interval's variance as independent noise.
+  bool heading = false;
+  std::array<int, 3> degree{};
+  std::array<Eigen::VectorXd, 3> c;  ///< per axis: b0, c1, c2 up to its degree
+  /// Of the coefficients in the order x (b0, c1, ...), y, z, after the chi^2 scale.
+  Eigen::MatrixXd covariance;
+  std::array<BiasTemperatureAxis, 3> axes{};  ///< AICc values (with temperature)
+  Eigen::Vector3d earth = Eigen::Vector3d::Zero();      ///< w_0 [rad/s] (heading)
+  Eigen::Matrix3d earth_cov = Eigen::Matrix3d::Zero();  ///< its covariance [(rad/s)^2]
+  double chi2 = 0;
+  int dof = 0;
+  double scale = 1;  ///< covariance_scale applied
+  /// The bias at temperature offset dt = T - T0 [rad/s].
+  Eigen::Vector3d at(double dt) const;
+};
+
+/// Fits the gyroscope bias on the static intervals. `down` the calibrated unit down direction per
+/// interval, `attitude` the C_k of interval_attitudes (empty: the Earth rate as noise), `dt` the
+/// intervals' T - T0 [K], `temperature` whether to fit the temperature terms (degrees chosen by
+/// AICc). Falls back to the noise model when the heading model cannot be determined.
+GyroBiasFit fit_gyro_bias(const std::vector<StaticInterval>& intervals,
+                          const std::vector<Eigen::Vector3d>& down,
+                          const std::vector<Eigen::Matrix3d>& attitude, const Eigen::Matrix3d& g,
+                          const std::optional<double>& latitude_rad, const std::vector<double>& dt,
+                          bool temperature);
 
 /// Weighted polynomial regression y_k = sum_d c_d x_k^d (d = 0..degree) with known variances;
 /// returns coefficients, their covariance and chi^2.

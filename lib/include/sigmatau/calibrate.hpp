@@ -16,9 +16,12 @@
 ///     the cross-axis terms m_yx, m_zx, m_zy (the non-orthogonality of the sensing axes);
 ///     m_xy, m_xz, m_yz are 0 by this convention and reported as not identifiable. The
 ///     frame-free invariant A A^T (T's symmetric part to first order) is reported too.
-///  3. Gyroscope: bias from the static intervals (Earth rate: with a latitude its vertical part
-///     is removed and the unknown-heading horizontal part enters the uncertainty; without, the
-///     whole Earth rate does); G = I + T_g (all 9 terms, in the accelerometer frame of step 2)
+///  3. Gyroscope: bias from the static intervals, jointly with the Earth rate w_0 in the frame of
+///     the first interval: the attitude C_k of interval k relative to the first is known from
+///     the integrated rotations, so interval k sees G C_k^T w_0 (with a latitude the vertical
+///     part of w_0 is known and its horizontal part, 2 numbers, is estimated; without, all 3;
+///     when that cannot be determined, the unknown part enters each interval's uncertainty as
+///     independent noise); G = I + T_g (all 9 terms, in the accelerometer frame of step 2)
 ///     from the rotations between consecutive static intervals: the calibrated gyro, integrated
 ///     across each rotation, must carry the calibrated gravity direction of one interval onto
 ///     the next.
@@ -156,6 +159,11 @@ struct TriadCalibration {
   double chi2 = 0;
   int dof = 0;
   double covariance_scale = 1;         ///< chi^2/dof when it was applied, else 1
+  /// Gyroscope: the Earth rate in the frame of the first static interval [rad/s], estimated with
+  /// the bias (heading model, step 3); nullopt when the Earth rate's unknown part entered the
+  /// bias uncertainty as independent noise per interval instead.
+  std::optional<Eigen::Vector3d> earth_rate;
+  Eigen::Matrix3d earth_rate_covariance = Eigen::Matrix3d::Zero();  ///< of earth_rate [(rad/s)^2]
 };
 
 struct CalibrationResult {
