@@ -133,10 +133,18 @@ TEST_CASE("measured parameters are read from fit and calibrate results") {
 
   const char* calibration = R"json({"accelerometer":{"bias":[0.1,0.2,0.3],
     "bias_ci":[[0.09,0.11],[0.19,0.21],[0.29,0.31]],"scale_factor_error":[0.01,0.02,0.03],
-    "misalignment":[[0,0.001,null],[0.002,0,0.003],[null,null,0]]}})json";
+    "misalignment":[[0,0.001,null],[0.002,0,0.003],[null,null,0]],
+    "matrix":[[1.01,0,0],[0.002,1.02,0],[0,0.003,1.03]]}})json";
   const auto c = measured_parameters_from_json(calibration, "cal.json");
-  CHECK(c.size() == 3 + 3 + 3);  // 3 biases, 3 scale factors, 3 identifiable cross-axis terms
+  // 3 biases, 3 scale factors, and from the matrix the non-orthogonality of the 3 axis pairs
+  // (the cross-axis terms one by one depend on the calibration frame: not read).
+  REQUIRE(c.size() == 3 + 3 + 3);
   CHECK(c[0].ci_high == test::rel(0.11, 1e-15));
+  CHECK(c[6].quantity == MeasuredQuantity::non_orthogonality);
+  CHECK(c[6].axis == "xy");
+  // Rows (1.01, 0, 0) and (0.002, 1.02, 0): sin(delta) = 0.002 / |(0.002, 1.02)| exactly.
+  CHECK(c[6].value == test::rel(std::asin(0.002 / std::hypot(0.002, 1.02)), 1e-12));
+  CHECK(c[8].axis == "yz");
 
   const char* with_temperature = R"json({"gyroscope":{"temperature_coefficients":[
     {"degree":1,"linear":1e-5,"linear_ci":[8e-6,1.2e-5]},{"degree":1,"linear":-2e-5,"linear_ci":[-3e-5,-1e-5]},

@@ -4,10 +4,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/triad_frames.hpp"
 
 namespace sigmatau {
 namespace {
@@ -15,8 +18,14 @@ namespace {
 struct Candidate {
   SpecField field;
   double limit_factor;  // limit_si = printed value_si * limit_factor
-  const char* rule;
+  std::string rule;
+  std::string factor_text = "";  // how the printed value is scaled, for showing the limit used
 };
+
+/// Said of a non-orthogonality in every rule: what it is and why it is the one compared.
+constexpr const char* kDeltaRule =
+    "|delta| = |90 deg - angle between the two sensing axes| (frame-free, from A A^T; ~ "
+    "|m_ij + m_ji|; the cross-axis terms m_ij themselves depend on the calibration frame) ";
 
 /// The data-sheet fields a measured quantity is compared with, in order of preference.
 std::vector<Candidate> candidates(MeasuredQuantity q, DensityConvention convention) {
@@ -26,7 +35,8 @@ std::vector<Candidate> candidates(MeasuredQuantity q, DensityConvention conventi
       return {{SpecField::random_walk, 1.0, "measured N against the printed random walk (ARW/VRW)"},
               {SpecField::noise_density, one_sided ? 1.0 / std::sqrt(2.0) : 1.0,
                one_sided ? "measured N against printed noise density / sqrt(2) (one-sided convention)"
-                         : "measured N against printed noise density (two-sided convention: N = ND)"}};
+                         : "measured N against printed noise density (two-sided convention: N = ND)",
+               one_sided ? "/√2" : ""}};
     case MeasuredQuantity::bias_instability:
       return {{SpecField::bias_instability, 1.0,
                "ADEV floor 0.664 B against the printed in-run bias stability"}};
@@ -40,11 +50,40 @@ std::vector<Candidate> candidates(MeasuredQuantity q, DensityConvention conventi
       return {{SpecField::cross_axis_sensitivity, 1.0, "|m| against the printed cross-axis sensitivity"},
               {SpecField::misalignment, 1.0,
                "|m| against the printed misalignment angle (small-angle: rad = ratio)"}};
+    case MeasuredQuantity::non_orthogonality:
+      // A printed "axis-to-axis" misalignment is delta itself: see axis_to_axis() below.
+      return {{SpecField::misalignment, 2.0,
+               std::string(kDeltaRule) +
+                   "against 2 x the printed misalignment c (read as each axis against the package, "
+               "which keeps a pair within 2c of 90 deg; the tilt against the package is not "
+               "measured)",
+               "×2"},
+              {SpecField::cross_axis_sensitivity, 2.0,
+               std::string(kDeltaRule) +
+                   "against 2 x the printed cross-axis sensitivity c (each axis within c of its "
+               "package axis keeps a pair within 2c of 90 deg; small angles: rad = ratio; the "
+               "tilt against the package is not measured)",
+               "×2"}};
     case MeasuredQuantity::bias_temperature_coefficient:
       return {{SpecField::bias_temperature_coefficient, 1.0,
                "|db/dT| against the printed bias temperature coefficient"}};
+    case MeasuredQuantity::frame_rotation:
+      return {};  // informational: no data sheet prints it
   }
   return {};
+}
+
+/// A printed misalignment between the axes of a triad (rather than against the package) bounds
+/// the non-orthogonality itself.
+Candidate axis_to_axis(const Candidate& c, const SpecValue& value) {
+  std::string condition = value.condition;
+  for (char& ch : condition) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (condition.find("axis-to-axis") == std::string::npos &&
+      condition.find("axis to axis") == std::string::npos) {
+    return c;
+  }
+  return {c.field, 1.0, std::string(kDeltaRule) + "against the printed axis-to-axis misalignment",
+          ""};
 }
 
 /// The estimate and its upper bound as compared with the limit. A term not detected has no
@@ -62,6 +101,7 @@ std::pair<double, double> as_compared(const MeasuredParameter& p) {
     case MeasuredQuantity::bias:
     case MeasuredQuantity::scale_factor_error:
     case MeasuredQuantity::cross_axis:
+    case MeasuredQuantity::non_orthogonality:
     case MeasuredQuantity::bias_temperature_coefficient:
       return {std::abs(p.value), std::max(std::abs(p.ci_low), std::abs(p.ci_high))};
     default:
@@ -85,8 +125,23 @@ std::string_view to_string(MeasuredQuantity quantity) {
     case MeasuredQuantity::scale_factor_error: return "scale_factor_error";
     case MeasuredQuantity::cross_axis: return "cross_axis";
     case MeasuredQuantity::bias_temperature_coefficient: return "bias_temperature_coefficient";
+    case MeasuredQuantity::non_orthogonality: return "non_orthogonality";
+    case MeasuredQuantity::frame_rotation: return "frame_rotation";
   }
   return "?";
+}
+
+bool compared_by_magnitude(MeasuredQuantity quantity) {
+  switch (quantity) {
+    case MeasuredQuantity::bias:
+    case MeasuredQuantity::scale_factor_error:
+    case MeasuredQuantity::cross_axis:
+    case MeasuredQuantity::non_orthogonality:
+    case MeasuredQuantity::bias_temperature_coefficient:
+      return true;
+    default:
+      return false;
+  }
 }
 
 std::string_view to_string(Verdict verdict) {
@@ -108,9 +163,12 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
     const SensorSheet* section = sheet.sensor(p.sensor);
     bool found = false;
     if (section) {
-      for (const auto& candidate : candidates(p.quantity, options.convention)) {
-        const SpecValue* value = section->find(candidate.field);
+      for (const auto& listed : candidates(p.quantity, options.convention)) {
+        const SpecValue* value = section->find(listed.field);
         if (!value || !value->limit()) continue;
+        const Candidate candidate = p.quantity == MeasuredQuantity::non_orthogonality
+                                        ? axis_to_axis(listed, *value)
+                                        : listed;
         const PrintedValue& limit = *value->limit();
         ComplianceItem item;
         item.measured = p;
@@ -119,6 +177,8 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
         item.limit_unit = limit.unit;
         item.limit_is_typical = value->limit_is_typical();
         item.limit_si = std::abs(limit.value_si) * candidate.limit_factor;
+        item.limit_factor = candidate.limit_factor;
+        item.limit_factor_text = candidate.factor_text;
         std::tie(item.compared, item.compared_upper) = as_compared(p);
         item.rule = candidate.rule;
         if (item.limit_is_typical) item.rule += " (no max printed: typical value used)";
@@ -149,6 +209,12 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
       item.measured = p;
       item.verdict = Verdict::not_specified;
       std::tie(item.compared, item.compared_upper) = as_compared(p);
+      if (p.quantity == MeasuredQuantity::frame_rotation) {
+        item.rule =
+            "informational: rotation vector carrying the accelerometer triad's axes onto the "
+            "gyro triad's (nearest rotations to each A), in the accelerometer frame; no data "
+            "sheet prints it";
+      }
       items.push_back(std::move(item));
     }
   }
@@ -158,6 +224,12 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
 bool any_failed(const std::vector<ComplianceItem>& items) {
   return std::any_of(items.begin(), items.end(),
                      [](const ComplianceItem& i) { return i.verdict == Verdict::fail; });
+}
+
+int items_checked(const std::vector<ComplianceItem>& items) {
+  return static_cast<int>(std::count_if(items.begin(), items.end(), [](const ComplianceItem& i) {
+    return i.verdict != Verdict::not_specified;
+  }));
 }
 
 std::string overall_verdict(const std::vector<ComplianceItem>& items) {
@@ -200,6 +272,9 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
       j["compared_upper"] = item.compared_upper;
       if (item.measured.detected) j["margin"] = item.margin;
       j["margin_upper"] = item.margin_upper;
+      j["limit_factor"] = item.limit_factor;
+      j["rule"] = item.rule;
+    } else if (!item.rule.empty()) {
       j["rule"] = item.rule;
     }
     list.push_back(j);
@@ -276,8 +351,63 @@ void read_fit(const json& doc, const std::string& file, std::vector<MeasuredPara
   }
 }
 
-void read_triad_calibration(const json& triad, Sensor sensor, const std::string& file,
-                            std::vector<MeasuredParameter>& out) {
+/// The index in A's row-major entries of a calibrate parameter ("s_x" = A_xx - 1, "m_yx" = A_yx,
+/// "G_xy" = A_xy), or -1 for any other parameter (biases, temperature terms).
+int matrix_entry(const std::string& name) {
+  const auto axis = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1; };
+  if (name.size() == 3 && name[0] == 's' && name[1] == '_' && axis(name[2]) >= 0) {
+    return 4 * axis(name[2]);
+  }
+  if (name.size() == 4 && (name[0] == 'm' || name[0] == 'G') && name[1] == '_' &&
+      axis(name[2]) >= 0 && axis(name[3]) >= 0) {
+    return 3 * axis(name[2]) + axis(name[3]);
+  }
+  return -1;
+}
+
+/// A triad's sensing matrix with the covariance of its entries, when the result holds it
+/// ("matrix", and "parameters" with "covariance" for the uncertainty; without them the
+/// covariance is zero and an interval is only its estimate, as for a bias without "bias_ci").
+std::optional<TriadMatrix> triad_matrix(const json& triad) {
+  if (!triad.contains("matrix") || !triad["matrix"].is_array()) return std::nullopt;
+  TriadMatrix t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t.a(i, j) = triad["matrix"].at(i).at(j).get<double>();
+  if (triad.contains("parameters") && triad.contains("covariance")) {
+    const auto& names = triad["parameters"];
+    const auto& cov = triad["covariance"];
+    for (std::size_t p = 0; p < names.size(); ++p) {
+      const int ep = matrix_entry(names.at(p).get<std::string>());
+      if (ep < 0) continue;
+      for (std::size_t q = 0; q < names.size(); ++q) {
+        const int eq = matrix_entry(names.at(q).get<std::string>());
+        if (eq >= 0) t.covariance(ep, eq) = cov.at(p).at(q).get<double>();
+      }
+    }
+  }
+  return t;
+}
+
+/// A measured angle with its interval at `z` standard errors.
+MeasuredParameter angle(Sensor sensor, MeasuredQuantity quantity, std::string axis,
+                        const AngleEstimate& e, double z) {
+  return {sensor, quantity, std::move(axis), e.value, e.value - z * e.standard_error,
+          e.value + z * e.standard_error};
+}
+
+/// Two-sided normal quantile of a result's "confidence" (calibrate's intervals are normal).
+double interval_z(const json& section) {
+  const double confidence = section.value("confidence", 0.95);
+  if (!(confidence > 0 && confidence < 1)) throw Error("\"confidence\" is not in (0, 1)");
+  return boost::math::quantile(boost::math::normal(), (1 + confidence) / 2);
+}
+
+/// Reads one triad's parameters; returns its sensing matrix when the result holds it. The
+/// cross-axis terms are not read one by one: they depend on the calibration frame, so only the
+/// triad's non-orthogonality (frame-free) is checked.
+std::optional<TriadMatrix> read_triad_calibration(const json& triad, Sensor sensor,
+                                                  const std::string& file,
+                                                  std::vector<MeasuredParameter>& out) {
   static const char* kAxes[] = {"x", "y", "z"};
   const std::string where = file + ": " + (sensor == Sensor::gyro ? "gyroscope" : "accelerometer");
   if (triad.contains("bias")) {
@@ -302,23 +432,6 @@ void read_triad_calibration(const json& triad, Sensor sensor, const std::string&
       out.push_back({sensor, MeasuredQuantity::scale_factor_error, kAxes[i], s, lo, hi});
     }
   }
-  if (triad.contains("misalignment")) {
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        if (i == j) continue;
-        const json& m = triad["misalignment"].at(i).at(j);
-        if (m.is_null()) continue;  // not identifiable
-        const double v = m.get<double>();
-        double lo = v, hi = v;
-        if (triad.contains("misalignment_ci") && !triad["misalignment_ci"].at(i).at(j).is_null()) {
-          lo = triad["misalignment_ci"].at(i).at(j).at(0).get<double>();
-          hi = triad["misalignment_ci"].at(i).at(j).at(1).get<double>();
-        }
-        out.push_back({sensor, MeasuredQuantity::cross_axis,
-                       std::string(kAxes[i]) + kAxes[j], v, lo, hi});
-      }
-    }
-  }
   if (triad.contains("temperature_coefficients")) {
     const json& axes = triad["temperature_coefficients"];
     for (int i = 0; i < 3 && i < static_cast<int>(axes.size()); ++i) {
@@ -333,12 +446,38 @@ void read_triad_calibration(const json& triad, Sensor sensor, const std::string&
       out.push_back({sensor, MeasuredQuantity::bias_temperature_coefficient, kAxes[i], c, lo, hi});
     }
   }
-  (void)where;
+  const std::optional<TriadMatrix> matrix = triad_matrix(triad);
+  if (matrix) {
+    double z = 0;
+    try {
+      z = interval_z(triad);
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
+    static const int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    for (const auto& pair : kPairs) {
+      out.push_back(angle(sensor, MeasuredQuantity::non_orthogonality,
+                          std::string(kAxes[pair[0]]) + kAxes[pair[1]],
+                          non_orthogonality(*matrix, pair[0], pair[1]), z));
+    }
+  }
+  return matrix;
 }
 
 void read_calibration(const json& doc, const std::string& file, std::vector<MeasuredParameter>& out) {
-  if (doc.contains("accelerometer")) read_triad_calibration(doc["accelerometer"], Sensor::accel, file, out);
-  if (doc.contains("gyroscope")) read_triad_calibration(doc["gyroscope"], Sensor::gyro, file, out);
+  std::optional<TriadMatrix> accel, gyro;
+  if (doc.contains("accelerometer")) accel = read_triad_calibration(doc["accelerometer"], Sensor::accel, file, out);
+  if (doc.contains("gyroscope")) gyro = read_triad_calibration(doc["gyroscope"], Sensor::gyro, file, out);
+  if (accel && gyro) {
+    // Both written in the accelerometer frame (calibrate.hpp): their relative rotation is
+    // reported beside the verdicts.
+    const double z = interval_z(doc["gyroscope"]);
+    const auto phi = relative_rotation(*accel, *gyro);
+    static const char* kComponents[] = {"x", "y", "z"};
+    for (std::size_t k = 0; k < 3; ++k) {
+      out.push_back(angle(Sensor::gyro, MeasuredQuantity::frame_rotation, kComponents[k], phi[k], z));
+    }
+  }
 }
 
 }  // namespace

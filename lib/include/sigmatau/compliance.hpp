@@ -18,7 +18,16 @@
 ///    or ND / sqrt(2) (one-sided); against a printed ARW / VRW directly;
 ///  - measured B (flicker coefficient) against a printed in-run bias stability: the printed
 ///    value is the ADEV floor 0.664 B, so 0.664 B is compared with it;
-///  - offsets, gain errors, cross-axis terms and temperature coefficients by magnitude.
+///  - offsets, gain errors, cross-axis terms, non-orthogonality and temperature coefficients by
+///    magnitude;
+///  - a calibrated triad's misalignment / cross-axis sensitivity: only what is frame-independent
+///    (triad_frames.hpp) is compared, the non-orthogonality delta_ij of each axis pair
+///    (~ m_ij + m_ji). A printed "axis-to-axis" misalignment bounds delta_ij itself; any other
+///    printed misalignment or cross-axis sensitivity c bounds each axis against the package, which
+///    leaves a pair within 2c of 90 deg, so delta_ij is compared with 2c (the tilt against the
+///    package needs a package reference and is not measured);
+///  - the rotation from the accelerometer triad to the gyro triad is reported, never judged (no
+///    data sheet field prints it).
 
 #include <optional>
 #include <string>
@@ -40,8 +49,18 @@ enum class MeasuredQuantity {
   scale_factor_error,     ///< s_i [1]
   cross_axis,             ///< m_ij [1]
   bias_temperature_coefficient,  ///< db/dT [rad/s/K | m/s^2/K]
+  /// 90 deg - angle between sensing axes i and j of one triad [rad] (axis "xy", "xz", "yz");
+  /// frame-independent (triad_frames.hpp)
+  non_orthogonality,
+  /// rotation vector carrying the accelerometer triad's axes onto the gyro triad's, component
+  /// along x, y or z of the accelerometer frame [rad] (sensor gyro); informational
+  frame_rotation,
 };
 std::string_view to_string(MeasuredQuantity quantity);
+
+/// True when the quantity is compared with its limit by magnitude (|b|, |s|, |m|, |delta|,
+/// |db/dT|): its sign is real but not part of the verdict.
+bool compared_by_magnitude(MeasuredQuantity quantity);
 
 /// One measured value with its confidence interval (SI), or, for a noise term the fit did not
 /// keep, only its one-sided upper bound.
@@ -73,7 +92,11 @@ struct ComplianceItem {
   std::string limit_text;       ///< as printed, e.g. "±20 deg/s" or "0.015 deg/s/sqrt(Hz)"
   std::string limit_unit;       ///< the printed unit ("deg/s"), for showing values like the sheet
   bool limit_is_typical = false;
-  double limit_si = 0;          ///< the limit in the units of `compared` (SI)
+  double limit_si = 0;          ///< the limit in the units of `compared` (SI) actually used:
+                                ///< the printed value times `limit_factor`
+  double limit_factor = 1;      ///< limit_si / printed value (1/sqrt(2) for a one-sided noise
+                                ///< density, 2 for a per-axis misalignment against a pair)
+  std::string limit_factor_text;  ///< how the printed value was scaled ("/√2", "×2"), "" for 1
   double compared = 0;          ///< the measured estimate as compared (e.g. |b|, 0.664 B) [SI];
                                 ///< NaN when the term was not detected
   double compared_upper = 0;    ///< its upper confidence bound as compared [SI] (not detected:
@@ -97,6 +120,10 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
 /// True when any item failed (the `check` exit code 1).
 bool any_failed(const std::vector<ComplianceItem>& items);
 
+/// The number of items compared with the sheet (every verdict but not_specified). Zero means
+/// the sheet prints none of the measured items: nothing was checked (`check` exits 2).
+int items_checked(const std::vector<ComplianceItem>& items);
+
 /// The overall verdict: "fail" when any item failed, else "marginal" when any is marginal, else
 /// "inconclusive" when any is inconclusive, else "all pass" when something passed, else
 /// "nothing to check".
@@ -106,7 +133,8 @@ std::string overall_verdict(const std::vector<ComplianceItem>& items);
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
 /// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict", and when
 /// specified "spec_field","limit_text","limit_is_typical","limit_si","compared_upper",
-/// "margin_upper","rule", plus "compared","margin" when detected}]}. "verdict" is one of "pass",
+/// "margin_upper","limit_factor","rule", plus "compared","margin" when detected; "rule" also on
+/// an unspecified item that explains itself, e.g. the informational frame_rotation}]}. "verdict" is one of "pass",
 /// "marginal", "fail", "inconclusive", "not specified". Written by `check --format json` and into
 /// analyze's results.json.
 std::string compliance_json(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
@@ -116,7 +144,11 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
 /// ({"channels":[{"name","quantity","parameters":{"N":{...},"B":...,"K":...}}]}), a `calibrate`
 /// result ({"accelerometer":{...},"gyroscope":{...}}), or an `analyze` results.json (which holds
 /// both under "fit" and "calibration"). A fit term given only as "upper_bound" is read as not
-/// detected (a null bound, written for NaN, as an unknown bound). Channel names gx/gy/gz and ax/ay/az (or quantity
+/// detected (a null bound, written for NaN, as an unknown bound). A calibrate triad gives its
+/// biases, scale factor errors and temperature coefficients, and from its "matrix" (A) with
+/// "parameters" and "covariance" the non-orthogonality of its three axis pairs; with both triads,
+/// also the accelerometer-to-gyro frame_rotation. Intervals use the result's "confidence"
+/// (default 0.95). Channel names gx/gy/gz and ax/ay/az (or quantity
 /// angular_rate / specific_force with a trailing x/y/z) give sensor and axis. Throws Error
 /// naming `file` on any other shape.
 std::vector<MeasuredParameter> measured_parameters_from_json(std::string_view json_text,
