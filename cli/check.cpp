@@ -1,9 +1,11 @@
 // `sigmatau check --spec SHEET RESULT.json`: pass / marginal / fail against a data sheet, and
 // inconclusive for a term the fit did not detect whose upper bound exceeds the limit.
 // Exit status 0 when nothing failed, 1 when any check failed (so it can gate a production line);
-// an inconclusive item is not a failure.
+// an inconclusive item is not a failure; 2 on bad input, including a sheet that prints none of
+// the measured items (nothing was checked, so no pass can be given).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -27,24 +29,149 @@ struct CheckArguments {
   bool force = false;
 };
 
-/// A value in the printed unit when it converts, else in SI.
-std::string in_printed_unit(double value_si, const std::string& unit) {
+/// A value in `unit` when it converts, else in SI; `sign` false prints |value| (as compared).
+std::string in_unit(double value_si, const std::string& unit, bool sign = true) {
   char buffer[64];
   if (!unit.empty()) {
     try {
       const Unit u = parse_unit(unit);
-      std::snprintf(buffer, sizeof buffer, "%.4g %s", value_si / u.factor, unit.c_str());
+      std::snprintf(buffer, sizeof buffer, sign ? "%+.4g %s" : "%.4g %s", value_si / u.factor,
+                    unit.c_str());
       return buffer;
     } catch (const Error&) {
     }
   }
-  std::snprintf(buffer, sizeof buffer, "%.4g SI", value_si);
+  std::snprintf(buffer, sizeof buffer, sign ? "%+.4g SI" : "%.4g SI", value_si);
   return buffer;
+}
+
+/// The unit a value the sheet does not print is shown in (the usual data-sheet one).
+std::string display_unit(const MeasuredParameter& p) {
+  const bool gyro = p.sensor == Sensor::gyro;
+  switch (p.quantity) {
+    case MeasuredQuantity::white_noise: return gyro ? "°/√h" : "m/s/√h";
+    case MeasuredQuantity::bias_instability: return gyro ? "°/h" : "mg";
+    case MeasuredQuantity::rate_random_walk: return gyro ? "°/h/√h" : "m/s/h/√h";
+    case MeasuredQuantity::bias: return gyro ? "°/h" : "mg";
+    case MeasuredQuantity::scale_factor_error: return "ppm";
+    case MeasuredQuantity::bias_temperature_coefficient: return gyro ? "°/h/K" : "mg/K";
+    case MeasuredQuantity::cross_axis:
+    case MeasuredQuantity::non_orthogonality:
+    case MeasuredQuantity::frame_rotation: return "mrad";
+  }
+  return "";
+}
+
+/// The measured estimate as shown: signed, and inside |...| when the magnitude is what is
+/// compared (a negative bias stays visibly negative; the margin is of |b|).
+std::string measured_cell(const ComplianceItem& item, const std::string& unit) {
+  const MeasuredParameter& p = item.measured;
+  if (!p.detected) return "not detected";
+  if (compared_by_magnitude(p.quantity)) return "|" + in_unit(p.value, unit) + "|";
+  return in_unit(item.compared, unit, false);
+}
+
+/// The limit actually compared with, and the printed value when it was scaled (one-sided
+/// density: printed / √2; per-axis misalignment against a pair: 2 × printed).
+std::string limit_cell(const ComplianceItem& item) {
+  std::string cell = item.limit_factor_text.empty()
+                         ? item.limit_text
+                         : in_unit(item.limit_si, item.limit_unit, false) + " (" +
+                               item.limit_text + " " + item.limit_factor_text + ")";
+  return cell + (item.limit_is_typical ? " (typ)" : "");
+}
+
+/// Displayed width of UTF-8 text: its code points (every byte but continuation bytes 10xxxxxx).
+std::size_t width(const std::string& text) {
+  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  }));
+}
+
+/// `text` padded with spaces to `columns` displayed characters (left-aligned, or right-aligned).
+std::string pad(const std::string& text, std::size_t columns, bool right = false) {
+  const std::size_t w = width(text);
+  const std::string fill(w < columns ? columns - w : 0, ' ');
+  return right ? fill + text : text + fill;
 }
 
 std::string label(const ComplianceItem& item) {
   return std::string(to_string(item.measured.sensor)) + " " +
          std::string(to_string(item.measured.quantity)) + " " + item.measured.axis;
+}
+
+std::string ratio(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", value);
+  return buffer;
+}
+
+/// One table row; `cells` are parameter, verdict, measured, upper bound, limit, margin, upper.
+std::string row(const std::vector<std::string>& cells) {
+  static const std::size_t kWidths[] = {36, 13, 22, 22, 40, 8, 8};
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i > 0) line += ' ';
+    line += pad(cells[i], kWidths[i], i >= 5);
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line + "\n";
+}
+
+std::string table(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
+                  const std::string& result) {
+  std::ostringstream out;
+  out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
+      << result << "; pass: upper bound within the limit, marginal: estimate within but "
+      << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
+      << "beyond (a longer log is needed); |x|: compared by magnitude\n";
+  out << row({"parameter", "verdict", "measured", "upper bound", "limit", "margin", "upper"});
+  std::vector<const ComplianceItem*> informational;
+  for (const auto& item : items) {
+    if (item.measured.quantity == MeasuredQuantity::frame_rotation) {
+      informational.push_back(&item);
+      continue;
+    }
+    const std::string verdict(to_string(item.verdict));
+    if (item.verdict == Verdict::not_specified) {
+      out << row({label(item), verdict, measured_cell(item, display_unit(item.measured))});
+    } else if (!item.measured.detected) {
+      // Only a bound: no estimate and no estimate margin to show.
+      out << row({label(item), verdict, "not detected",
+                  "< " + in_unit(item.compared_upper, item.limit_unit, false), limit_cell(item),
+                  "-", ratio(item.margin_upper)});
+    } else {
+      out << row({label(item), verdict, measured_cell(item, item.limit_unit),
+                  in_unit(item.compared_upper, item.limit_unit, false), limit_cell(item),
+                  ratio(item.margin), ratio(item.margin_upper)});
+    }
+  }
+  if (!informational.empty()) {
+    out << "# gyro-to-accelerometer rotation (informational, not a verdict: no data sheet prints "
+           "it): rotation vector carrying the accelerometer axes onto the gyro axes, in the "
+           "accelerometer frame, with its interval\n";
+    for (const ComplianceItem* item : informational) {
+      const MeasuredParameter& p = item->measured;
+      out << row({label(*item), "info", in_unit(p.value, "mrad"),
+                  "[" + in_unit(p.ci_low, "mrad") + ", " + in_unit(p.ci_high, "mrad") + "]"});
+    }
+  }
+  const int checked = items_checked(items);
+  const int unspecified = static_cast<int>(items.size() - informational.size()) - checked;
+  int inconclusive = 0;
+  for (const auto& item : items) inconclusive += item.verdict == Verdict::inconclusive;
+  const std::string counted = std::to_string(checked) + " of " +
+                              std::to_string(checked + unspecified) + " items checked";
+  if (any_failed(items)) {
+    out << "RESULT: FAIL (" << counted << ")\n";
+  } else if (inconclusive > 0) {
+    out << "RESULT: no check failed (" << counted << "); " << inconclusive
+        << " inconclusive (terms not detected whose upper bound exceeds the limit: a longer log "
+           "is needed to decide them)\n";
+  } else {
+    out << "RESULT: no check failed (" << counted << ")\n";
+  }
+  return out.str();
 }
 
 void run_check(const CheckArguments& args) {
@@ -57,6 +184,13 @@ void run_check(const CheckArguments& args) {
   ComplianceOptions options;
   options.convention = parse_density_convention(args.convention);
   const auto items = check_compliance(measured, sheet, options);
+  if (items_checked(items) == 0) {
+    // A pass with zero checks would let any part through a production gate: this is an input
+    // that cannot give a verdict (the wrong sheet for this result, or the wrong result).
+    throw Error("nothing to check: " + sheet.name + " (" + sheet.part + ") prints none of the " +
+                std::to_string(measured.size()) + " items measured in " + args.result +
+                " (use the sheet of this part, or a result that measures what the sheet prints)");
+  }
 
   std::ostringstream out;
   if (args.format == "json") {
@@ -65,46 +199,7 @@ void run_check(const CheckArguments& args) {
     doc["version"] = SIGMATAU_VERSION;
     out << doc.dump(1) << "\n";
   } else {
-    out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
-        << args.result << "; pass: upper bound within the limit, marginal: estimate within but "
-        << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
-        << "beyond (a longer log is needed)\n";
-    char line[512];
-    std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8s %8s\n", "parameter",
-                  "verdict", "measured", "upper bound", "limit", "margin", "upper");
-    out << line;
-    for (const auto& item : items) {
-      if (item.verdict == Verdict::not_specified) {
-        std::snprintf(line, sizeof line, "%-36s %-12s\n", label(item).c_str(), "not specified");
-      } else if (!item.measured.detected) {
-        // Only a bound: no estimate and no estimate margin to show.
-        std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8s %8.3f\n",
-                      label(item).c_str(), std::string(to_string(item.verdict)).c_str(),
-                      "not detected",
-                      ("< " + in_printed_unit(item.compared_upper, item.limit_unit)).c_str(),
-                      (item.limit_text + (item.limit_is_typical ? " (typ)" : "")).c_str(), "-",
-                      item.margin_upper);
-      } else {
-        std::snprintf(line, sizeof line, "%-36s %-12s %-22s %-22s %-22s %8.3f %8.3f%s\n",
-                      label(item).c_str(), std::string(to_string(item.verdict)).c_str(),
-                      in_printed_unit(item.compared, item.limit_unit).c_str(),
-                      in_printed_unit(item.compared_upper, item.limit_unit).c_str(),
-                      (item.limit_text + (item.limit_is_typical ? " (typ)" : "")).c_str(),
-                      item.margin, item.margin_upper, "");
-      }
-      out << line;
-    }
-    int inconclusive = 0;
-    for (const auto& item : items) inconclusive += item.verdict == Verdict::inconclusive;
-    if (any_failed(items)) {
-      out << "RESULT: FAIL\n";
-    } else if (inconclusive > 0) {
-      out << "RESULT: no check failed; " << inconclusive
-          << " inconclusive (terms not detected whose upper bound exceeds the limit: a longer log "
-             "is needed to decide them)\n";
-    } else {
-      out << "RESULT: no check failed\n";
-    }
+    out << table(items, sheet, args.result);
   }
   if (args.output.empty()) {
     std::cout << out.str();
@@ -121,7 +216,8 @@ void add_check_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "check", "Compare measured parameters (fit, calibrate or analyze result) with a data sheet: "
                "pass / marginal / fail (inconclusive: a term not detected whose upper bound "
-               "exceeds the limit); exit 1 when any check fails");
+               "exceeds the limit); exit 1 when any check fails, 2 when the sheet prints "
+               "none of the measured items");
   command->add_option("--spec", args->spec, "data sheet: a YAML file or a name from `sigmatau specs list`")
       ->required();
   command->add_option("RESULT", args->result, "a sigmatau fit / calibrate / analyze JSON result")

@@ -32,10 +32,10 @@ foreach(length 1h 5min)
                        FIXTURES_SETUP check_n_only_fit_${length})
 endforeach()
 sigmatau_cli_test(NAME cli_check_undetected_pass EXIT 0 WORKING_DIRECTORY ${check_dir}
-  STDOUT "gyro bias_instability x +pass +not detected +< 0\\.[0-9]+ .*RESULT: no check failed.$"
+  STDOUT "gyro bias_instability x +pass +not detected +< 0\\.[0-9]+ .*RESULT: no check failed \\([0-9]+ of [0-9]+ items checked\\).$"
   ARGS check --spec safran_stim300 n_only_1h.json)
 sigmatau_cli_test(NAME cli_check_undetected_inconclusive EXIT 0 WORKING_DIRECTORY ${check_dir}
-  STDOUT "gyro bias_instability x +inconclusive +not detected.*RESULT: no check failed; 3 inconclusive"
+  STDOUT "gyro bias_instability x +inconclusive +not detected.*RESULT: no check failed \\([0-9]+ of [0-9]+ items checked\\); 3 inconclusive"
   ARGS check --spec safran_stim300 n_only_5min.json)
 sigmatau_cli_test(NAME cli_check_undetected_json EXIT 0 WORKING_DIRECTORY ${check_dir}
   STDOUT "\"detected\": false,[^}]*\"quantity\": \"bias_instability\",[^}]*\"upper_bound\": [^}]*\"verdict\": \"inconclusive\""
@@ -50,3 +50,39 @@ sigmatau_cli_test(NAME cli_check_undetected_analyze EXIT 0 WORKING_DIRECTORY ${c
   ARGS analyze n_only_5min.csv --time-column t --gyro-unit rad/s --spec safran_stim300 --ci 0.95
        -o analyze_5min --force)
 set_tests_properties(cli_check_undetected_analyze PROPERTIES FIXTURES_REQUIRED check_n_only_log_5min)
+
+# Nothing compared is not a pass (review C finding 7): a sheet that prints none of the measured
+# items gives no verdict, exit 2 like any input that cannot be checked, and no output file.
+sigmatau_cli_test(NAME cli_check_nothing_to_check EXIT 2
+  STDERR "nothing to check: st_lsm6dso \\(LSM6DSO\\) prints none of the 2 items measured"
+  NO_FILE ${CMAKE_CURRENT_BINARY_DIR}/cli_check_nothing.txt
+  ARGS check --spec st_lsm6dso ${check_data}/fit_pass.json -o ${CMAKE_CURRENT_BINARY_DIR}/cli_check_nothing.txt)
+
+# A calibration whose accelerometer triad is turned 2 mrad about z beside a perfect gyro (review
+# C finding 6, tests/data/check/README.md): the gyro's non-orthogonality (frame-free) passes
+# STIM300's 1 mrad read per axis (2 mrad per pair), and the rotation is shown apart, as info.
+sigmatau_cli_test(NAME cli_check_calibration_frames EXIT 0
+  STDOUT "gyro non_orthogonality xy +pass +\\|-0\\.08341 mrad\\| .*2 mrad \\(1 mrad ×2\\) \\(typ\\).*gyro frame_rotation z +info +-2\\.045 mrad +\\[-2\\.119 mrad, -1\\.971 mrad\\].*RESULT: no check failed \\(18 of 18 items checked\\)"
+  ARGS check --spec safran_stim300 ${check_data}/cal_accel_rotated.json)
+sigmatau_cli_test(NAME cli_check_calibration_frames_json EXIT 0
+  STDOUT "\"quantity\": \"frame_rotation\",[^}]*\"rule\": \"informational[^}]*\"verdict\": \"not specified\""
+  ARGS check --spec safran_stim300 ${check_data}/cal_accel_rotated.json --format json)
+# A negative bias keeps its sign; the bars say its magnitude is what is compared.
+sigmatau_cli_test(NAME cli_check_signed_bias EXIT 0
+  STDOUT "accel bias x +pass +\\|-0\\.0003338 mg\\| +0\\.01375 mg"
+  ARGS check --spec safran_stim300 ${check_data}/cal_accel_rotated.json)
+
+# The limit column shows the limit used: one-sided, the printed density / sqrt(2) beside it.
+sigmatau_cli_test(NAME cli_check_one_sided_limit EXIT 0
+  STDOUT "gyro white_noise x +pass .*1\\.98 mdps/√Hz \\(2\\.8 mdps/√Hz /√2\\) \\(typ\\) +0\\.579 +0\\.608"
+  ARGS check --spec tdk_icm42688p ${check_data}/fit_pass.json --density-convention one-sided)
+sigmatau_cli_test(NAME cli_check_one_sided_limit_json EXIT 0
+  STDOUT "\"limit_factor\": 0\\.7071"
+  ARGS check --spec tdk_icm42688p ${check_data}/fit_pass.json --density-convention one-sided --format json)
+
+# Columns are padded by displayed characters, not bytes: the °/√hr row (13 characters, 17 bytes)
+# and the °/hr row (11 characters, 12 bytes) start their next column at the same place (CMake
+# regular expressions have no {n}: the runs of spaces are written out).
+sigmatau_cli_test(NAME cli_check_columns_aligned EXIT 0
+  STDOUT "gyro white_noise x                   pass          0\\.06875 °/√hr          0\\.07219 °/√hr          0\\.15 °/√hr \\(typ\\)                            0\\.458.*gyro bias_instability x              pass          0\\.6851 °/hr            0\\.8221 °/hr            2 °/hr \\(typ\\)                                0\\.343"
+  ARGS check --spec adi_adis16465 ${check_data}/fit_pass.json)
