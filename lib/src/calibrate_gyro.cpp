@@ -8,7 +8,9 @@
 // frame, in which gravity is fixed, turns with the Earth); dtheta_i = G^-1 dz_i - R_i^T e_k tau0
 // the calibrated angle of step i relative to the local level; R_j = prod Exp(dtheta_i) the rotation from
 // frame k to frame k+1; u_k the calibrated gravity direction (accelerometer fit); the residual is
-// B_j^T (u_{k+1} - R_j^T u_k), B_j an orthonormal basis of the plane normal to u_{k+1}.
+// B_j^T (u_{k+1} - R_j^T u_k), B_j an orthonormal basis of the plane normal to u_{k+1};
+// C_{k+1} = C_k R_k the attitude of interval k relative to interval 0 (interval_attitudes, for the
+// bias model's Earth rate: every pair of consecutive intervals, however small its rotation).
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
