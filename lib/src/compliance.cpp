@@ -273,6 +273,7 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
       if (item.measured.detected) j["margin"] = item.margin;
       j["margin_upper"] = item.margin_upper;
       j["limit_factor"] = item.limit_factor;
+      if (!item.limit_factor_text.empty()) j["limit_factor_text"] = item.limit_factor_text;
       j["rule"] = item.rule;
     } else if (!item.rule.empty()) {
       j["rule"] = item.rule;

@@ -291,6 +291,13 @@ bool any_inconclusive(const json& compliance) {
   return false;
 }
 
+/// The limit as printed, with how it was scaled for the comparison when it was ("/√2" for a
+/// one-sided density, "×2" for a per-axis misalignment against an axis pair).
+std::string limit_cell(const json& item) {
+  const std::string scaled = item.value("limit_factor_text", "");
+  return item.value("limit_text", "") + (scaled.empty() ? "" : " " + scaled);
+}
+
 /// The "measured / limit" cell of the compliance tables.
 std::string margin_cell(const json& item) {
   if (item.value("verdict", "") == "not specified") return "";
@@ -454,7 +461,7 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
          << item.value("axis", "") << " | " << item.value("verdict", "") << " | "
          << margin_cell(item) << " | "
          << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << " | "
-         << item.value("limit_text", "") << " |\n";
+         << limit_cell(item) << " |\n";
     }
     if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
@@ -530,7 +537,7 @@ std::string report_html(const json& results, const PlotSet& plots,
         << html_escape(item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", ""))
         << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
         << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << "</td><td>"
-        << html_escape(item.value("limit_text", "")) << (item.value("limit_is_typical", false) ? " (typ)" : "")
+        << html_escape(limit_cell(item)) << (item.value("limit_is_typical", false) ? " (typ)" : "")
         << "</td><td>" << html_escape(item.value("rule", "")) << "</td></tr>\n";
     }
     h << "</table>\n";

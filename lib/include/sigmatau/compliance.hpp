@@ -133,7 +133,8 @@ std::string overall_verdict(const std::vector<ComplianceItem>& items);
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
 /// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict", and when
 /// specified "spec_field","limit_text","limit_is_typical","limit_si","compared_upper",
-/// "margin_upper","limit_factor","rule", plus "compared","margin" when detected; "rule" also on
+/// "margin_upper","limit_factor","rule", plus "compared","margin" when detected and
+/// "limit_factor_text" when the printed value was scaled; "rule" also on
 /// an unspecified item that explains itself, e.g. the informational frame_rotation}]}. "verdict" is one of "pass",
 /// "marginal", "fail", "inconclusive", "not specified". Written by `check --format json` and into
 /// analyze's results.json.
