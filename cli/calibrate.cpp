@@ -217,7 +217,10 @@ void run_calibrate(const CalibrateArguments& a) {
     throw Error(path + ": " + e.what());  // the library's reasons do not know the file
   }
   check_temperature_unit(result, a.temp_unit, path);
-  if (used.gyro) check_gyro_unit(result, used.gyro_unit, path);
+  if (used.gyro) {
+    check_gyro_rotation_angles(*log, rate_hz, increments, result, used.gyro_unit, path);
+    check_gyro_unit(result, used.gyro_unit, path);
+  }
   for (const auto& n : calibration_notes(result)) std::cerr << "sigmatau: note: " << n << "\n";
   const std::string text = a.format == "json" ? calibration_json(result) : calibration_table(result);
   if (a.output.empty()) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -122,6 +123,41 @@ TEST_CASE("check_gyro_unit: refuses only a large misfit far beyond the noise") {
   none.gyro->matrix_estimated = false;
   CHECK(error_of([&] { check_gyro_unit(none, "rad/s", ""); }).empty());
   CHECK(error_of([] { check_gyro_unit(CalibrationResult{}, "rad/s", ""); }).empty());
+}
+
+TEST_CASE("check_gyro_rotation_angles: a gyroscope that turned less than gravity did is refused") {
+  // Four rests with gravity along +x, +y, +z, -x (turns of 90, 90 and 90 deg), 100 rows of
+  // rotation about one axis between them integrating to `fraction` of the turn.
+  const double rate = 100;
+  const auto run = [&](double fraction) {
+    CalibrationLog log(true, false, std::int64_t{1} << 20);
+    CalibrationResult r;
+    r.accel.matrix_estimated = true;
+    r.gyro = TriadCalibration{};
+    const Eigen::Vector3d down[4] = {{kG, 0, 0}, {0, kG, 0}, {0, 0, kG}, {-kG, 0, 0}};
+    std::vector<double> rows;
+    std::int64_t row = 0;
+    for (int k = 0; k < 4; ++k) {
+      StaticInterval s;
+      s.first = row;
+      for (int i = 0; i < 300; ++i, ++row)
+        rows.insert(rows.end(), {down[k].x(), down[k].y(), down[k].z(), 0, 0, 0});
+      s.last = row - 1;
+      s.accel_mean = down[k];
+      r.detection.intervals.push_back(s);
+      if (k == 3) break;
+      const double w = fraction * (std::numbers::pi / 2) * rate / 100;  // [rad/s] for 100 rows
+      for (int i = 0; i < 100; ++i, ++row) rows.insert(rows.end(), {0, 0, 0, 0, 0, w});
+    }
+    log.append(rows);
+    return error_of([&] { check_gyro_rotation_angles(log, rate, false, r, "deg/s", "r.csv"); });
+  };
+  CHECK(run(1.0).empty());
+  CHECK(run(0.6).empty());  // above kMinGyroPathRatio: a large gain error is not a unit error
+  const std::string small = run(1 / 57.3);  // rad/s read as deg/s
+  CHECK(contains(small, "r.csv: "));
+  CHECK(contains(small, "read in deg/s (--gyro-unit deg/s)"));
+  CHECK(contains(small, "in 3 of 3 rotations"));
 }
 
 TEST_CASE("check_temperature_unit: degC read as K and K read as degC are refused") {

@@ -2,6 +2,8 @@
 // (calibrate_checks.hpp).
 #include "sigmatau/calibrate_checks.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -59,23 +61,22 @@ void check_accel_unit(double median_magnitude, double gravity, const std::string
   const double ratio = median_magnitude / gravity;
   if (ratio <= kMaxAccelMagnitudeFactor && ratio >= 1 / kMaxAccelMagnitudeFactor) return;
   // The columns' SI factor would be unit_factor / ratio; name a common unit within 20 % of it.
-  std::string suggestion;
-  if (!increments) {
-    for (const char* candidate : {"m/s^2", "g", "mg", "ug", "cm/s^2", "mm/s^2", "ft/s^2"}) {
-      const double f = parse_unit(candidate).factor;
-      if (std::abs(f * ratio / unit_factor - 1) <= 0.2 && candidate != unit_given) {
-        suggestion = std::string(": they look like ") + candidate + " (--accel-unit " + candidate + ")";
-        break;
-      }
+  std::string suggestion = ": is that their unit?";
+  const std::vector<const char*> rates{"m/s^2", "g", "mg", "ug", "cm/s^2", "mm/s^2", "ft/s^2"};
+  const std::vector<const char*> velocities{"m/s", "mm/s", "cm/s", "ft/s"};
+  for (const char* candidate : increments ? velocities : rates) {
+    const double f = parse_unit(candidate).factor;
+    if (std::abs(f * ratio / unit_factor - 1) <= 0.2 && candidate != unit_given) {
+      suggestion = std::string(": they look like ") + candidate + " (--accel-unit " + candidate + ")";
+      break;
     }
   }
-  char text[320];
+  char text[400];
   std::snprintf(text, sizeof text,
                 "calibrate: the median accelerometer magnitude is %.4g x the gravity %.6g m/s^2 "
-                "with the columns read in %s (--accel-unit %s)%s; a calibration log, mostly "
+                "with the columns read in %s (--accel-unit %s)%s. A calibration log, mostly "
                 "static, has a median within a factor %g of the gravity",
-                ratio, gravity, unit_given.c_str(), unit_given.c_str(),
-                suggestion.empty() ? ": is that their unit?" : suggestion.c_str(),
+                ratio, gravity, unit_given.c_str(), unit_given.c_str(), suggestion.c_str(),
                 kMaxAccelMagnitudeFactor);
   throw Error(prefixed(path, text));
 }
@@ -90,12 +91,57 @@ void check_gyro_unit(const CalibrationResult& r, const std::string& unit_given,
   std::snprintf(text, sizeof text,
                 "calibrate: the gyroscope misses the rotations between the static intervals by "
                 "%.3g rad (%.3g deg) rms, chi^2/dof %.3g: a working gyroscope in the right unit "
-                "misses them by under %.2g rad. Are the gyro columns in %s (--gyro-unit %s; deg/s "
-                "read as rad/s turns every rotation 57 times too far)? Otherwise the gyroscope "
+                "misses them by under %.2g rad. Are the gyro columns in %s (--gyro-unit %s; degrees "
+                "read as radians turn every rotation 57 times too far)? Otherwise the gyroscope "
                 "saturated during the rotations, or the sample rate is wrong (--time-column, "
                 "--rate)",
                 g.residual_rms, g.residual_rms * 180 / 3.141592653589793, chi2_dof,
                 kMaxGyroRotationMisfit, unit_given.c_str(), unit_given.c_str());
+  throw Error(prefixed(path, text));
+}
+
+void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool increments,
+                                const CalibrationResult& r, const std::string& unit_given,
+                                const std::string& path) {
+  if (!log.has_gyro() || !r.gyro) return;
+  const auto& iv = r.detection.intervals;
+  const Eigen::Matrix3d ainv = r.accel.matrix.inverse();
+  const Eigen::Vector3d ab(r.accel.bias[0].value, r.accel.bias[1].value, r.accel.bias[2].value);
+  const int c = log.channels();
+  const double dt = 1 / rate_hz, to_rate = increments ? rate_hz : 1.0;
+  int tested = 0, short_paths = 0;
+  double worst = INFINITY;  // smallest ratio path / gravity angle
+  for (std::size_t k = 0; k + 1 < iv.size(); ++k) {
+    const Eigen::Vector3d u0 = (ainv * (iv[k].accel_mean - ab)).normalized();
+    const Eigen::Vector3d u1 = (ainv * (iv[k + 1].accel_mean - ab)).normalized();
+    const double turned = std::acos(std::clamp(u0.dot(u1), -1.0, 1.0));
+    if (turned < kMinTestedGravityTurn || iv[k + 1].first <= iv[k].last + 1) continue;
+    // The bias (and Earth rate) of the two rests, removed from each step [rad/s].
+    const Eigen::Vector3d bias = (iv[k].gyro_mean + iv[k + 1].gyro_mean) / 2;
+    double travelled = 0;  // [rad]
+    log.read(iv[k].last + 1, iv[k + 1].first, [&](std::int64_t, std::int64_t n, const double* v) {
+      for (std::int64_t i = 0; i < n; ++i) {
+        const double* row = v + i * c;
+        const Eigen::Vector3d w(row[3] * to_rate, row[4] * to_rate, row[5] * to_rate);
+        travelled += (w - bias).norm() * dt;
+      }
+    });
+    ++tested;
+    const double ratio = travelled / turned;
+    worst = std::min(worst, ratio);
+    if (ratio < kMinGyroPathRatio) ++short_paths;
+  }
+  if (tested < 3 || 2 * short_paths < tested) return;
+  char text[560];
+  std::snprintf(text, sizeof text,
+                "calibrate: the gyroscope, read in %s (--gyro-unit %s), turned less than %g times "
+                "the angle gravity turned in the sensor frame in %d of %d rotations (down to %.3g "
+                "times): a rotation cannot turn gravity further than the sensor turned. Are the "
+                "gyro columns in %s (radians read as degrees give 1/57 of the angle)? Otherwise the "
+                "sample rate "
+                "is too high (--time-column, --rate) or the gyroscope saturated",
+                unit_given.c_str(), unit_given.c_str(), kMinGyroPathRatio, short_paths, tested,
+                worst, unit_given.c_str());
   throw Error(prefixed(path, text));
 }
 

@@ -59,6 +59,12 @@ sigmatau_cli_test(NAME cli_calibrate_accel_unit_named EXIT 2 WORKING_DIRECTORY $
 sigmatau_cli_test(NAME cli_calibrate_gyro_unit_wrong EXIT 2 WORKING_DIRECTORY ${CAL_DIR}
   STDERR "misses the rotations .* Are the gyro columns in rad/s \\(--gyro-unit rad/s"
   ARGS calibrate units.csv --time-column t --accel-unit mg)
+# Gyroscope in rad/s read as deg/s: the sensor turned 1/57 of the angle gravity turned (was exit
+# 0, the gyro matrix "not estimated" in the JSON only).
+sigmatau_cli_test(NAME cli_calibrate_gyro_unit_too_small EXIT 2 WORKING_DIRECTORY ${CAL_DIR}
+  STDERR "cal\\.csv: calibrate: the gyroscope, read in deg/s \\(--gyro-unit deg/s\\), turned less than 0\\.5 times the angle gravity turned in the sensor frame in 1[0-9] of 1[0-9] rotations"
+  ARGS calibrate cal.csv --time-column t --latitude 45 --gyro-unit deg/s)
+set_tests_properties(cli_calibrate_gyro_unit_too_small PROPERTIES DEPENDS cli_calibrate_simulate)
 # The same log in the right units passes the checks (they cannot trip on a good log).
 sigmatau_cli_test(NAME cli_calibrate_units_right EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
   STDOUT "gain error x"

@@ -56,6 +56,25 @@ inline constexpr double kMinGyroMisfitChi2PerDof = 10.0;
 void check_gyro_unit(const CalibrationResult& result, const std::string& unit_given,
                      const std::string& path);
 
+/// Rotations tested by check_gyro_rotation_angles: those that turn the calibrated gravity
+/// direction by at least this [rad] (30 deg: well above the direction error of an uncalibrated
+/// accelerometer, a few deg for a bias of 60 mg).
+inline constexpr double kMinTestedGravityTurn = 30.0 * 3.14159265358979323846 / 180;
+/// The angle a gyroscope integrates across a rotation (the path length, sum of |w - b| dt) is at
+/// least the angle by which gravity turned in the sensor frame (any rotation that turns a vector
+/// by an angle has at least that angle), up to the gain error (a few %); below this fraction [1]
+/// of it the gyroscope reads too little: rad/s read as deg/s (1/57), a sample rate 2 or more
+/// times too high, or a saturated gyroscope.
+inline constexpr double kMinGyroPathRatio = 0.5;
+
+/// Throws Error when, in at least half of at least 3 rotations between consecutive static
+/// intervals that turn gravity by kMinTestedGravityTurn or more, the gyroscope's path length is
+/// below kMinGyroPathRatio times gravity's turn: the message names `unit_given` and --gyro-unit.
+/// One pass over the rotations' rows of `log` (the log `result` was computed from).
+void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool increments,
+                                const CalibrationResult& result, const std::string& unit_given,
+                                const std::string& path);
+
 /// Plausible range of an IMU's temperature [K]: 150 K (-123 degC) is far below the coldest
 /// rating of any IMU data sheet (-55 degC, 218 K), and a column in degC read as K gives at most
 /// 125-150 "K" (the hottest ratings); 500 K (227 degC) is above the hottest (downhole parts,
