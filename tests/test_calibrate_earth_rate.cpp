@@ -25,7 +25,7 @@ constexpr double kDeg = std::numbers::pi / 180;
 /// A tactical-grade pair with the errors of the review's study: gyro N = 0.02 deg/sqrt(h),
 /// scale 0.05-0.2 %, misalignment 0.5-2 mrad, bias 0.005-0.02 deg/s; accelerometer 60 ug/sqrt(Hz),
 /// scale 0.1-0.3 %, misalignment 0.8-2 mrad, bias 5-20 mg.
-SimulationConfig config(double latitude, std::uint64_t seed) {
+SimulationConfig config(double latitude, std::uint64_t seed, bool increments, bool temperature) {
   SimulationConfig c;
   c.rate_hz = 100;
   c.seed = seed;
@@ -40,10 +40,16 @@ SimulationConfig config(double latitude, std::uint64_t seed) {
     gyro.noise[i].white = 0.02 / 60 * kDeg;  // 0.02 deg/sqrt(h) in rad/sqrt(s)
     accel.noise[i].white = 60e-6 * 9.80665;
   }
+  if (temperature) gyro.temperature_coefficient = Eigen::Vector3d(1e-4, -2e-4, 1.5e-4) * kDeg;
   c.gyro = gyro;
   c.accel = accel;
+  if (increments) c.kind = OutputKind::increment;
   c.schedule = calibration_schedule(12, 20.0, 90 * kDeg, latitude);
   c.samples = static_cast<std::int64_t>(schedule_duration_s(*c.schedule) * c.rate_hz) + 1;
+  // A 20 K ramp over the log (from 15 degC: T0 = 25 degC falls inside it).
+  if (temperature)
+    c.temperature_profile = TemperatureProfile{
+        {{0, 288.15}, {static_cast<double>(c.samples) / c.rate_hz, 308.15}}};
   return c;
 }
 
@@ -56,8 +62,9 @@ Eigen::Matrix3d frame_rotation(const Eigen::Matrix3d& a) {
   return (q * s.asDiagonal()).transpose();
 }
 
-void check_bias(double latitude, bool give_latitude, std::uint64_t seed) {
-  const SimulationConfig c = config(latitude, seed);
+void check_bias(double latitude, bool give_latitude, std::uint64_t seed, bool increments = false,
+                bool temperature = false) {
+  const SimulationConfig c = config(latitude, seed, increments, temperature);
   const CalibrationInput in = test::simulate_calibration_input(c);
   CalibrationOptions o;
   o.gravity = normal_gravity(latitude);
@@ -77,6 +84,14 @@ void check_bias(double latitude, bool give_latitude, std::uint64_t seed) {
     // horizontal Earth rate in the uncertainty instead of the model (SE ~10 urad/s at latitude
     // 0, with which 4.5 SE passes the +20 urad/s error it causes).
     CHECK(b.standard_error < 2e-6);
+  }
+  if (temperature) {
+    REQUIRE(r.gyro->temperature);
+    for (int i = 0; i < 3; ++i) {
+      const auto& t = (*r.gyro->temperature)[static_cast<std::size_t>(i)];
+      INFO("axis " << i << ": tempco " << t.linear.value << " +- " << t.linear.standard_error);
+      CHECK(std::abs(t.linear.value - c.gyro->temperature_coefficient[i]) <= 4.5 * t.linear.standard_error);
+    }
   }
   // The Earth rate in the frame of the first interval (the first position), in the calibration
   // frame Q x body. Tolerance: 4.5 times the rms of its reported standard errors, plus 1e-7 rad/s
@@ -101,4 +116,9 @@ TEST_CASE("gyro bias: the horizontal Earth rate is modelled through the interval
   SUBCASE("latitude 0 given") { check_bias(0, true, 1); }
   SUBCASE("latitude 48 given") { check_bias(48 * kDeg, true, 2); }
   SUBCASE("latitude 0 not given (the whole Earth rate estimated)") { check_bias(0, false, 3); }
+  SUBCASE("latitude 0, increments") { check_bias(0, true, 4, true); }
+  // The temperature terms chosen by AICc alongside the Earth rate: 1e-4 to 2e-4 deg/s/K, 35-70
+  // urad/s over the ramp (a steeper drift within an 18 s dwell is refused by the detector as
+  // slow motion for a gyro this quiet).
+  SUBCASE("latitude 0, temperature ramp") { check_bias(0, true, 5, false, true); }
 }
