@@ -46,3 +46,15 @@ TEST_CASE("a kept Q gets its column in summary.md and report.html; R, not kept, 
         std::string::npos);
   CHECK(bound.files.at("report.html").find("<th>Q</th>") == std::string::npos);
 }
+
+TEST_CASE("the summary says B is the coefficient and the sheet's bias stability its floor") {
+  // A STIM300 at its typical 0.5 deg/h fits as B = 0.75 deg/h: without the note the table read
+  // as 50 % over the sheet while the compliance row (which compares 0.664 B) passed.
+  ReportOptions options;
+  options.plots = false;
+  const ReportFiles files = build_report(results_with(false), options);
+  CHECK(files.files.at("summary.md").find("data sheets print its ADEV floor 0.664 B as the bias "
+                                          "stability") != std::string::npos);
+  CHECK(files.files.at("report.html").find("data sheets print its ADEV floor 0.664 B as the bias "
+                                           "stability") != std::string::npos);
+}

@@ -279,6 +279,12 @@ double item_number(const json& item, const char* key) {
 bool undetected(const json& item) { return !item.value("detected", true); }
 
 /// Said under a compliance table with an inconclusive item.
+/// Under the summary table: B beside the floor a data sheet prints (a STIM300 at its typical
+/// 0.5 deg/h fits as B = 0.75 deg/h, which read as 50 % over the sheet).
+constexpr const char* kBiasFloorNote =
+    "B is the bias-instability coefficient; data sheets print its ADEV floor 0.664 B as the bias "
+    "stability, and the compliance rows compare that floor.";
+
 constexpr const char* kInconclusiveNote =
     "Inconclusive: the fit did not detect the term, and its upper bound exceeds the limit, so "
     "this log can neither pass nor fail it; a longer log bounds it more tightly. A term not "
@@ -454,6 +460,7 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
        << " | " << cells[2].second << " | " << (show_q ? cells[3].second + " | " : "")
        << (show_r ? cells[4].second + " | " : "") << density << " |\n";
   }
+  md << "\n" << kBiasFloorNote << "\n";
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
     for (const auto& item : results["compliance"]["items"]) {
@@ -522,7 +529,8 @@ std::string report_html(const json& results, const PlotSet& plots,
   }
   h << "</table><p class=\"muted\">Intervals at " << fmt(100 * results.value("confidence", 0.683), 3)
     << " % confidence. N: angle/velocity random walk (white noise density, AVAR = N&sup2;/&tau;); "
-       "B: bias instability (ADEV floor 0.664 B); K: rate random walk"
+       "B: bias instability coefficient (data sheets print its ADEV floor 0.664 B as the bias "
+       "stability, and the compliance rows compare that floor); K: rate random walk"
     << (show_q ? "; Q: quantization (AVAR = 3 Q&sup2;/&tau;&sup2;)" : "")
     << (show_r ? "; R: rate ramp (AVAR = R&sup2; &tau;&sup2;/2)" : "")
     << ". Terms the data does not support are given as upper bounds (&lt;).</p>\n";
