@@ -126,15 +126,16 @@ TEST_CASE("check_gyro_unit: refuses only a large misfit far beyond the noise") {
 }
 
 TEST_CASE("check_gyro_rotation_angles: a gyroscope that turned less than gravity did is refused") {
-  // Four rests with gravity along +x, +y, +z, -x (turns of 90, 90 and 90 deg), 100 rows of
-  // rotation about one axis between them integrating to `fraction` of the turn.
+  // Four rests with gravity along +x, -y, -x, +y (the sensor turned +90 deg about z each time,
+  // so gravity turned -90 deg in its frame), 100 rows of rotation about z between them
+  // integrating to `fraction` of the turn.
   const double rate = 100;
   const auto run = [&](double fraction) {
     CalibrationLog log(true, false, std::int64_t{1} << 20);
     CalibrationResult r;
     r.accel.matrix_estimated = true;
     r.gyro = TriadCalibration{};
-    const Eigen::Vector3d down[4] = {{kG, 0, 0}, {0, kG, 0}, {0, 0, kG}, {-kG, 0, 0}};
+    const Eigen::Vector3d down[4] = {{kG, 0, 0}, {0, -kG, 0}, {-kG, 0, 0}, {0, kG, 0}};
     std::vector<double> rows;
     std::int64_t row = 0;
     for (int k = 0; k < 4; ++k) {
@@ -153,11 +154,16 @@ TEST_CASE("check_gyro_rotation_angles: a gyroscope that turned less than gravity
     return error_of([&] { check_gyro_rotation_angles(log, rate, false, r, "deg/s", "r.csv"); });
   };
   CHECK(run(1.0).empty());
-  CHECK(run(0.6).empty());  // above kMinGyroPathRatio: a large gain error is not a unit error
+  CHECK(run(0.9).empty());  // a -10 % gain error misses by 9 deg, under kMaxRawGyroMisfit
   const std::string small = run(1 / 57.3);  // rad/s read as deg/s
   CHECK(contains(small, "r.csv: "));
   CHECK(contains(small, "read in deg/s (--gyro-unit deg/s)"));
   CHECK(contains(small, "in 3 of 3 rotations"));
+  // Three times too far (270 deg for 90): gravity lands 180 deg from where it went.
+  const std::string far = run(3.0);
+  CHECK(contains(far, "read in deg/s (--gyro-unit deg/s), integrated across the rotations, misses "
+                      "where gravity went by more than 30 deg in 3 of 3 rotations (median 180 deg)"));
+  CHECK(run(1.1).empty());  // a 10 % gain error misses by 9 deg
 }
 
 TEST_CASE("check_temperature_unit: degC read as K and K read as degC are refused") {

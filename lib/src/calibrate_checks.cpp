@@ -2,6 +2,7 @@
 // (calibrate_checks.hpp).
 #include "sigmatau/calibrate_checks.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -109,8 +110,9 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
   const Eigen::Vector3d ab(r.accel.bias[0].value, r.accel.bias[1].value, r.accel.bias[2].value);
   const int c = log.channels();
   const double dt = 1 / rate_hz, to_rate = increments ? rate_hz : 1.0;
-  int tested = 0, short_paths = 0;
+  int tested = 0, short_paths = 0, missed = 0;
   double worst = INFINITY;  // smallest ratio path / gravity angle
+  std::vector<double> misses;  // [rad]
   for (std::size_t k = 0; k + 1 < iv.size(); ++k) {
     const Eigen::Vector3d u0 = (ainv * (iv[k].accel_mean - ab)).normalized();
     const Eigen::Vector3d u1 = (ainv * (iv[k + 1].accel_mean - ab)).normalized();
@@ -119,17 +121,39 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
     // The bias (and Earth rate) of the two rests, removed from each step [rad/s].
     const Eigen::Vector3d bias = (iv[k].gyro_mean + iv[k + 1].gyro_mean) / 2;
     double travelled = 0;  // [rad]
+    Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();  // frame of rest k+1 in that of rest k
     log.read(iv[k].last + 1, iv[k + 1].first, [&](std::int64_t, std::int64_t n, const double* v) {
       for (std::int64_t i = 0; i < n; ++i) {
         const double* row = v + i * c;
-        const Eigen::Vector3d w(row[3] * to_rate, row[4] * to_rate, row[5] * to_rate);
-        travelled += (w - bias).norm() * dt;
+        const Eigen::Vector3d step =
+            (Eigen::Vector3d(row[3], row[4], row[5]) * to_rate - bias) * dt;  // [rad]
+        travelled += step.norm();
+        if (step.norm() > 0) rot = rot * Eigen::AngleAxisd(step.norm(), step.normalized()).toRotationMatrix();
       }
     });
     ++tested;
     const double ratio = travelled / turned;
     worst = std::min(worst, ratio);
     if (ratio < kMinGyroPathRatio) ++short_paths;
+    // The raw gyroscope (G = I) must carry gravity from rest k onto rest k+1.
+    const double miss = std::acos(std::clamp((rot.transpose() * u0).dot(u1), -1.0, 1.0));
+    misses.push_back(miss);
+    if (miss > kMaxRawGyroMisfit) ++missed;
+  }
+  if (tested >= 3 && 2 * missed >= tested && 2 * short_paths < tested) {
+    std::sort(misses.begin(), misses.end());
+    char text[560];
+    std::snprintf(text, sizeof text,
+                  "calibrate: the gyroscope, read in %s (--gyro-unit %s), integrated across the "
+                  "rotations, misses where gravity went by more than %.0f deg in %d of %d "
+                  "rotations (median %.0f deg); a working gyroscope misses by its gain and "
+                  "misalignment errors, a few %% of the angle. Are the gyro columns in %s "
+                  "(degrees read as radians turn every rotation 57 times too far)? Otherwise the "
+                  "sample rate is wrong (--time-column, --rate) or the gyroscope saturated",
+                  unit_given.c_str(), unit_given.c_str(), kMaxRawGyroMisfit * 180 / 3.141592653589793,
+                  missed, tested, misses[misses.size() / 2] * 180 / 3.141592653589793,
+                  unit_given.c_str());
+    throw Error(prefixed(path, text));
   }
   if (tested < 3 || 2 * short_paths < tested) return;
   char text[560];

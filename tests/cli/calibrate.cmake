@@ -57,7 +57,7 @@ sigmatau_cli_test(NAME cli_calibrate_accel_unit_named EXIT 2 WORKING_DIRECTORY $
 # Gyroscope in deg/s read as rad/s: every rotation turns 57 times too far (was exit 0 with
 # chi2/dof 1.5e5/13).
 sigmatau_cli_test(NAME cli_calibrate_gyro_unit_wrong EXIT 2 WORKING_DIRECTORY ${CAL_DIR}
-  STDERR "misses the rotations .* Are the gyro columns in rad/s \\(--gyro-unit rad/s"
+  STDERR "units\\.csv: calibrate: the gyroscope, read in rad/s \\(--gyro-unit rad/s\\), integrated across the rotations, misses where gravity went by more than 30 deg in [0-9]+ of 11 rotations.* Are the gyro columns in rad/s"
   ARGS calibrate units.csv --time-column t --accel-unit mg)
 # Gyroscope in rad/s read as deg/s: the sensor turned 1/57 of the angle gravity turned (was exit
 # 0, the gyro matrix "not estimated" in the JSON only).

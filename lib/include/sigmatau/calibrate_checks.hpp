@@ -67,10 +67,19 @@ inline constexpr double kMinTestedGravityTurn = 30.0 * 3.14159265358979323846 / 
 /// times too high, or a saturated gyroscope.
 inline constexpr double kMinGyroPathRatio = 0.5;
 
-/// Throws Error when, in at least half of at least 3 rotations between consecutive static
-/// intervals that turn gravity by kMinTestedGravityTurn or more, the gyroscope's path length is
-/// below kMinGyroPathRatio times gravity's turn: the message names `unit_given` and --gyro-unit.
-/// One pass over the rotations' rows of `log` (the log `result` was computed from).
+/// Angle [rad] by which the raw gyroscope (G = I, the rests' mean rate removed), integrated
+/// across a rotation, may miss carrying the calibrated gravity direction of one rest onto the
+/// next. A working gyroscope misses by its gain and misalignment errors times the angle (a few
+/// % of at most 180 deg: under 10 deg even for 5 % errors); degrees read as radians turn it 57
+/// times too far, so the direction lands at random (more than 30 deg off with probability 0.93).
+/// This test needs no fit: it also catches the logs whose gyroscope fit fails.
+inline constexpr double kMaxRawGyroMisfit = 30.0 * 3.14159265358979323846 / 180;
+
+/// Throws Error when, of at least 3 rotations between consecutive static intervals that turn
+/// gravity by kMinTestedGravityTurn or more, at least half have a gyroscope path length below
+/// kMinGyroPathRatio times gravity's turn (too small a unit), or else at least half are missed
+/// by more than kMaxRawGyroMisfit (a wrong unit either way): the message names `unit_given`
+/// and --gyro-unit. One pass over the rotations' rows of `log` (the log `result` came from).
 void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool increments,
                                 const CalibrationResult& result, const std::string& unit_given,
                                 const std::string& path);
