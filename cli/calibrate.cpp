@@ -210,6 +210,7 @@ void run_calibrate(const CalibrateArguments& a) {
   // (whose own magnitude check knows only SI).
   check_accel_unit(median_accel_magnitude(*log, rate_hz, increments), o.gravity, used.accel_unit,
                    used.accel_factor, increments, path);
+  if (used.temperature) check_temperature_unit(median_temperature_k(*log), a.temp_unit, path);
   CalibrationResult result;
   try {
     result = calibrate(*log, rate_hz, increments, o);

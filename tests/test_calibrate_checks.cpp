@@ -181,6 +181,29 @@ TEST_CASE("check_temperature_unit: degC read as K and K read as degC are refused
   CHECK(error_of([&] { check_temperature_unit(none, "K", ""); }).empty());
 }
 
+TEST_CASE("median_temperature_k and the check before the calibration: glitches cannot move it") {
+  // 1000 rows at 20-40 (degC read as K) with 10 glitches at 0: the median is the rows' lower
+  // median to a bin (0.1 K), near 30 K whatever the glitches.
+  CalibrationLog log(false, true, std::int64_t{1} << 20);
+  std::vector<double> rows, temps;
+  for (int i = 0; i < 1000; ++i) {
+    temps.push_back(i % 100 == 0 ? 0.0 : 20 + 0.02 * i);
+    rows.insert(rows.end(), {0, 0, kG, temps.back()});
+  }
+  log.append(rows);
+  std::sort(temps.begin(), temps.end());
+  const double median = median_temperature_k(log);
+  CHECK(std::abs(median - temps[499]) <= 0.1);
+  const std::string cold = error_of([&] { check_temperature_unit(median, "K", "t.csv"); });
+  CHECK(contains(cold, "t.csv: "));
+  CHECK(contains(cold, "read in K (--temp-unit K), has a median of"));
+  CHECK(contains(cold, "is the column in degC (--temp-unit degC)?"));
+  CHECK(error_of([] { check_temperature_unit(303.0, "K", ""); }).empty());
+  CHECK(contains(error_of([] { check_temperature_unit(576.0, "degC", ""); }), "above any IMU's range"));
+  CalibrationLog none(false, false, 1024);
+  CHECK(median_temperature_k(none) == 0);
+}
+
 TEST_CASE("calibration_notes and the table: a dropped temperature model is said, with where b holds") {
   // Span 0.4 K: neither sensor gets a temperature model.
   const CalibrationResult flat = temperature_result({298.0, 298.4}, false);

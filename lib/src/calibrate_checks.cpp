@@ -21,6 +21,10 @@ namespace {
 /// (a zero row) fall into the first bin, larger into the last.
 constexpr double kLogLow = -8, kLogHigh = 8, kLogStep = 1e-3;
 
+/// Histogram of the temperature column [K]: bins of 0.1 K over [-1000 K, 2000 K] (a column in a
+/// wrong unit can be anything; out-of-range values fall into the end bins).
+constexpr double kTempLow = -1000, kTempHigh = 2000, kTempStep = 0.1;
+
 /// Temperature span below which calibrate() fits no temperature dependence [K] (calibrate.cpp,
 /// kMinTemperatureSpan): the coefficient would be an extrapolation of noise.
 constexpr double kMinTemperatureSpanK = 1.0;
@@ -166,6 +170,43 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
                 "is too high (--time-column, --rate) or the gyroscope saturated",
                 unit_given.c_str(), unit_given.c_str(), kMinGyroPathRatio, short_paths, tested,
                 worst, unit_given.c_str());
+  throw Error(prefixed(path, text));
+}
+
+double median_temperature_k(const CalibrationLog& log) {
+  const std::int64_t rows = log.rows();
+  if (!log.has_temperature() || rows == 0) return 0;
+  const auto bins = static_cast<std::size_t>(std::lround((kTempHigh - kTempLow) / kTempStep)) + 1;
+  std::vector<std::int64_t> count(bins, 0);
+  const int c = log.channels();
+  log.read(0, rows, [&](std::int64_t, std::int64_t n, const double* v) {
+    for (std::int64_t r = 0; r < n; ++r) {
+      const double x = (v[r * c + c - 1] - kTempLow) / kTempStep;
+      ++count[static_cast<std::size_t>(std::clamp(x, 0.0, static_cast<double>(bins - 1)))];
+    }
+  });
+  const std::int64_t half = (rows + 1) / 2;
+  std::int64_t seen = 0;
+  std::size_t bin = 0;
+  for (; bin < bins; ++bin) {
+    seen += count[bin];
+    if (seen >= half) break;
+  }
+  return kTempLow + (static_cast<double>(bin) + 0.5) * kTempStep;
+}
+
+void check_temperature_unit(double median_k, const std::string& unit_given,
+                            const std::string& path) {
+  if (median_k >= kMinImuTemperatureK && median_k <= kMaxImuTemperatureK) return;
+  const bool low = median_k < kMinImuTemperatureK;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "calibrate: the temperature column, read in %s (--temp-unit %s), has a median of "
+                "%.4g K (%.4g degC), %s any IMU's range (%g K to %g K)%s",
+                unit_given.c_str(), unit_given.c_str(), median_k, median_k - 273.15,
+                low ? "below" : "above", kMinImuTemperatureK, kMaxImuTemperatureK,
+                low ? ": is the column in degC (--temp-unit degC)?"
+                    : ": is the column in K (--temp-unit K) or in raw counts?");
   throw Error(prefixed(path, text));
 }
 

@@ -91,6 +91,16 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
 inline constexpr double kMinImuTemperatureK = 150.0;
 inline constexpr double kMaxImuTemperatureK = 500.0;
 
+/// Median of the temperature column over every sample [K] (0 without one), to 0.1 K, in one pass
+/// and fixed memory (a histogram over -1000 K to 2000 K). A glitch of a few samples cannot move it.
+double median_temperature_k(const CalibrationLog& log);
+
+/// Throws Error when `median_k` (median_temperature_k) is outside [kMinImuTemperatureK,
+/// kMaxImuTemperatureK]: the message names `unit_given` and --temp-unit. Checked before the
+/// calibration, whose temperature model would otherwise extrapolate the biases hundreds of K.
+void check_temperature_unit(double median_k, const std::string& unit_given,
+                            const std::string& path);
+
 /// Throws Error when the static intervals' temperatures (result.temperature_min_k / max_k) leave
 /// [kMinImuTemperatureK, kMaxImuTemperatureK]: the message names `unit_given` and --temp-unit.
 /// Does nothing without a temperature column.
