@@ -2,11 +2,11 @@
 // the refusal of a column read in a wrong unit (naming the unit given) only beyond the stated
 // bounds, and the notes and table labels when a bias temperature model is dropped (review C).
 #include <doctest/doctest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -111,13 +111,18 @@ TEST_CASE("check_accel_unit: a factor of 2 passes, a unit mix-up names the unit 
 }
 
 TEST_CASE("check_gyro_unit: refuses only a large misfit far beyond the noise") {
-  const std::string wrong = error_of([] { check_gyro_unit(gyro_result(0.4, 1e4), "rad/s", "g.csv"); });
+  const std::string wrong =
+      error_of([] { check_gyro_unit(gyro_result(0.4, 1e4), "rad/s", "g.csv"); });
   CHECK(contains(wrong, "g.csv: "));
   CHECK(contains(wrong, "Are the gyro columns in rad/s (--gyro-unit rad/s"));
   // Below the angle bound however large chi^2 (a low-noise gyroscope's unmodelled errors) ...
-  CHECK(error_of([] { check_gyro_unit(gyro_result(0.5 * kMaxGyroRotationMisfit, 1e5), "rad/s", ""); }).empty());
+  CHECK(error_of([] {
+          check_gyro_unit(gyro_result(0.5 * kMaxGyroRotationMisfit, 1e5), "rad/s", "");
+        }).empty());
   // ... and within the noise however large the angle (a very noisy gyroscope).
-  CHECK(error_of([] { check_gyro_unit(gyro_result(0.4, 0.5 * kMinGyroMisfitChi2PerDof), "rad/s", ""); }).empty());
+  CHECK(error_of([] {
+          check_gyro_unit(gyro_result(0.4, 0.5 * kMinGyroMisfitChi2PerDof), "rad/s", "");
+        }).empty());
   // No matrix (its note says why), no gyroscope: nothing to check.
   CalibrationResult none = gyro_result(0.4, 1e4);
   none.gyro->matrix_estimated = false;
@@ -161,21 +166,25 @@ TEST_CASE("check_gyro_rotation_angles: a gyroscope that turned less than gravity
   CHECK(contains(small, "in 3 of 3 rotations"));
   // Three times too far (270 deg for 90): gravity lands 180 deg from where it went.
   const std::string far = run(3.0);
-  CHECK(contains(far, "read in deg/s (--gyro-unit deg/s), integrated across the rotations, misses "
-                      "where gravity went by more than 30 deg in 3 of 3 rotations (median 180 deg)"));
+  CHECK(contains(far,
+                 "read in deg/s (--gyro-unit deg/s), integrated across the rotations, misses "
+                 "where gravity went by more than 30 deg in 3 of 3 rotations (median 180 deg)"));
   CHECK(run(1.1).empty());  // a 10 % gain error misses by 9 deg
 }
 
 TEST_CASE("check_temperature_unit: degC read as K and K read as degC are refused") {
-  CHECK(error_of([] { check_temperature_unit(temperature_result({233.15, 398.15}, true), "K", ""); })
-            .empty());  // -40 to 125 degC, an industrial rating
-  const std::string cold =
-      error_of([] { check_temperature_unit(temperature_result({293.15 - 273.15, 40}, true), "K", "t.csv"); });
+  CHECK(error_of([] {
+          check_temperature_unit(temperature_result({233.15, 398.15}, true), "K", "");
+        }).empty());  // -40 to 125 degC, an industrial rating
+  const std::string cold = error_of([] {
+    check_temperature_unit(temperature_result({293.15 - 273.15, 40}, true), "K", "t.csv");
+  });
   CHECK(contains(cold, "t.csv: "));
   CHECK(contains(cold, "read in K (--temp-unit K)"));
   CHECK(contains(cold, "is the column in degC (--temp-unit degC)?"));
-  const std::string hot =
-      error_of([] { check_temperature_unit(temperature_result({566, 586}, true), "degC", ""); });
+  const std::string hot = error_of([] {
+    check_temperature_unit(temperature_result({566, 586}, true), "degC", "");
+  });
   CHECK(contains(hot, "above any IMU's range"));
   CalibrationResult none;  // no temperature column: nothing to check
   CHECK(error_of([&] { check_temperature_unit(none, "K", ""); }).empty());
@@ -199,22 +208,27 @@ TEST_CASE("median_temperature_k and the check before the calibration: glitches c
   CHECK(contains(cold, "read in K (--temp-unit K), has a median of"));
   CHECK(contains(cold, "is the column in degC (--temp-unit degC)?"));
   CHECK(error_of([] { check_temperature_unit(303.0, "K", ""); }).empty());
-  CHECK(contains(error_of([] { check_temperature_unit(576.0, "degC", ""); }), "above any IMU's range"));
+  CHECK(contains(error_of([] { check_temperature_unit(576.0, "degC", ""); }),
+                 "above any IMU's range"));
   CalibrationLog none(false, false, 1024);
   CHECK(median_temperature_k(none) == 0);
 }
 
-TEST_CASE("calibration_notes and the table: a dropped temperature model is said, with where b holds") {
+TEST_CASE(
+    "calibration_notes and the table: a dropped temperature model is said, with where b holds") {
   // Span 0.4 K: neither sensor gets a temperature model.
   const CalibrationResult flat = temperature_result({298.0, 298.4}, false);
   const auto notes = calibration_notes(flat);
   REQUIRE(notes.size() == 2);
-  CHECK(contains(notes[0], "accelerometer: no bias temperature model (the static intervals span only 0.4 K"));
+  CHECK(contains(notes[0],
+                 "accelerometer: no bias temperature model (the static intervals span only 0.4 K"));
   CHECK(contains(notes[0], "mean temperature 25.05 degC, not at T0 = 25.00 degC"));
   CHECK(contains(notes[1], "gyroscope: no bias temperature model"));
   const std::string flat_table = calibration_table(flat);
-  CHECK(contains(flat_table, "# temperature 24.85 to 25.25 degC over the static intervals (mean 25.05 degC)"));
-  CHECK(contains(flat_table, "bias b at the log's mean temperature 25.05 degC (no temperature model)"));
+  CHECK(contains(flat_table,
+                 "# temperature 24.85 to 25.25 degC over the static intervals (mean 25.05 degC)"));
+  CHECK(contains(flat_table,
+                 "bias b at the log's mean temperature 25.05 degC (no temperature model)"));
   CHECK(contains(flat_table, "compensation: x = A^-1 (y - b)\n"));
   CHECK(contains(flat_table, "notes:\n  accelerometer: no bias temperature model"));
   CHECK(!contains(flat_table, "T0 = 25.00 degC,"));
@@ -227,7 +241,8 @@ TEST_CASE("calibration_notes and the table: a dropped temperature model is said,
   CHECK(contains(ramp_notes[0], "its drift over the 20 K the log spans"));
   const std::string ramp_table = calibration_table(ramp);
   CHECK(contains(ramp_table, "bias b at T0 = 25.00 degC (temperature model below)"));
-  CHECK(contains(ramp_table, "(c1 = c2 = 0 for the gyroscope, whose b holds at the mean temperature)"));
+  CHECK(contains(ramp_table,
+                 "(c1 = c2 = 0 for the gyroscope, whose b holds at the mean temperature)"));
   // The JSON says at which temperature each bias holds: T0 with a model, else the mean (the
   // tolerance is the rounding of the sums, well below a mK).
   const auto doc = nlohmann::json::parse(calibration_json(ramp));
@@ -236,7 +251,8 @@ TEST_CASE("calibration_notes and the table: a dropped temperature model is said,
   // A matrix not estimated is a note too.
   ramp.gyro->matrix_estimated = false;
   ramp.gyro->note = "too few rotations";
-  CHECK(contains(calibration_notes(ramp)[0], "gyroscope: matrix not estimated, only the bias: too few rotations"));
+  CHECK(contains(calibration_notes(ramp)[0],
+                 "gyroscope: matrix not estimated, only the bias: too few rotations"));
   // Without a temperature column: no notes, the bias labelled as such.
   CalibrationResult plain;
   plain.accel.matrix_estimated = true;

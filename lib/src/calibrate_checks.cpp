@@ -1,14 +1,18 @@
 // Plausibility checks of a calibration (unit mix-ups) and the notes beside its numbers
 // (calibrate_checks.hpp).
+//
+// Glossary: u_k the calibrated gravity direction of static interval k (A^-1 (a_k - b),
+// normalised); w the gyroscope rate [rad/s]; dt the sample interval [s]; "turned" the angle
+// between u_k and u_k+1; "path" the sum of |w - bias| dt across the rotation between them.
 #include "sigmatau/calibrate_checks.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <vector>
 
 #include "sigmatau/error.hpp"
@@ -19,6 +23,8 @@ namespace {
 
 /// Histogram of log10 of the magnitude [m/s^2]: bins of 1e-3 over [1e-8, 1e8]; smaller values
 /// (a zero row) fall into the first bin, larger into the last.
+const double kDegPerRad = 180 / std::numbers::pi;
+
 constexpr double kLogLow = -8, kLogHigh = 8, kLogStep = 1e-3;
 
 /// Histogram of the temperature column [K]: bins of 0.1 K over [-1000 K, 2000 K] (a column in a
@@ -72,7 +78,8 @@ void check_accel_unit(double median_magnitude, double gravity, const std::string
   for (const char* candidate : increments ? velocities : rates) {
     const double f = parse_unit(candidate).factor;
     if (std::abs(f * ratio / unit_factor - 1) <= 0.2 && candidate != unit_given) {
-      suggestion = std::string(": they look like ") + candidate + " (--accel-unit " + candidate + ")";
+      suggestion =
+          std::string(": they look like ") + candidate + " (--accel-unit " + candidate + ")";
       break;
     }
   }
@@ -93,15 +100,16 @@ void check_gyro_unit(const CalibrationResult& r, const std::string& unit_given,
   const double chi2_dof = g.chi2 / g.dof;
   if (!(g.residual_rms > kMaxGyroRotationMisfit && chi2_dof > kMinGyroMisfitChi2PerDof)) return;
   char text[512];
-  std::snprintf(text, sizeof text,
-                "calibrate: the gyroscope misses the rotations between the static intervals by "
-                "%.3g rad (%.3g deg) rms, chi^2/dof %.3g: a working gyroscope in the right unit "
-                "misses them by under %.2g rad. Are the gyro columns in %s (--gyro-unit %s; degrees "
-                "read as radians turn every rotation 57 times too far)? Otherwise the gyroscope "
-                "saturated during the rotations, or the sample rate is wrong (--time-column, "
-                "--rate)",
-                g.residual_rms, g.residual_rms * 180 / 3.141592653589793, chi2_dof,
-                kMaxGyroRotationMisfit, unit_given.c_str(), unit_given.c_str());
+  std::snprintf(
+      text, sizeof text,
+      "calibrate: the gyroscope misses the rotations between the static intervals by "
+      "%.3g rad (%.3g deg) rms, chi^2/dof %.3g: a working gyroscope in the right unit "
+      "misses them by under %.2g rad. Are the gyro columns in %s (--gyro-unit %s; degrees "
+      "read as radians turn every rotation 57 times too far)? Otherwise the gyroscope "
+      "saturated during the rotations, or the sample rate is wrong (--time-column, "
+      "--rate)",
+      g.residual_rms, g.residual_rms * kDegPerRad, chi2_dof, kMaxGyroRotationMisfit,
+      unit_given.c_str(), unit_given.c_str());
   throw Error(prefixed(path, text));
 }
 
@@ -115,7 +123,7 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
   const int c = log.channels();
   const double dt = 1 / rate_hz, to_rate = increments ? rate_hz : 1.0;
   int tested = 0, short_paths = 0, missed = 0;
-  double worst = INFINITY;  // smallest ratio path / gravity angle
+  double worst = INFINITY;     // smallest ratio path / gravity angle
   std::vector<double> misses;  // [rad]
   for (std::size_t k = 0; k + 1 < iv.size(); ++k) {
     const Eigen::Vector3d u0 = (ainv * (iv[k].accel_mean - ab)).normalized();
@@ -124,7 +132,7 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
     if (turned < kMinTestedGravityTurn || iv[k + 1].first <= iv[k].last + 1) continue;
     // The bias (and Earth rate) of the two rests, removed from each step [rad/s].
     const Eigen::Vector3d bias = (iv[k].gyro_mean + iv[k + 1].gyro_mean) / 2;
-    double travelled = 0;  // [rad]
+    double travelled = 0;                               // [rad]
     Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();  // frame of rest k+1 in that of rest k
     log.read(iv[k].last + 1, iv[k + 1].first, [&](std::int64_t, std::int64_t n, const double* v) {
       for (std::int64_t i = 0; i < n; ++i) {
@@ -132,7 +140,8 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
         const Eigen::Vector3d step =
             (Eigen::Vector3d(row[3], row[4], row[5]) * to_rate - bias) * dt;  // [rad]
         travelled += step.norm();
-        if (step.norm() > 0) rot = rot * Eigen::AngleAxisd(step.norm(), step.normalized()).toRotationMatrix();
+        if (step.norm() > 0)
+          rot = rot * Eigen::AngleAxisd(step.norm(), step.normalized()).toRotationMatrix();
       }
     });
     ++tested;
@@ -154,22 +163,22 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
                   "misalignment errors, a few %% of the angle. Are the gyro columns in %s "
                   "(degrees read as radians turn every rotation 57 times too far)? Otherwise the "
                   "sample rate is wrong (--time-column, --rate) or the gyroscope saturated",
-                  unit_given.c_str(), unit_given.c_str(), kMaxRawGyroMisfit * 180 / 3.141592653589793,
-                  missed, tested, misses[misses.size() / 2] * 180 / 3.141592653589793,
-                  unit_given.c_str());
+                  unit_given.c_str(), unit_given.c_str(), kMaxRawGyroMisfit * kDegPerRad, missed,
+                  tested, misses[misses.size() / 2] * kDegPerRad, unit_given.c_str());
     throw Error(prefixed(path, text));
   }
   if (tested < 3 || 2 * short_paths < tested) return;
   char text[560];
-  std::snprintf(text, sizeof text,
-                "calibrate: the gyroscope, read in %s (--gyro-unit %s), turned less than %g times "
-                "the angle gravity turned in the sensor frame in %d of %d rotations (down to %.3g "
-                "times): a rotation cannot turn gravity further than the sensor turned. Are the "
-                "gyro columns in %s (radians read as degrees give 1/57 of the angle)? Otherwise the "
-                "sample rate "
-                "is too high (--time-column, --rate) or the gyroscope saturated",
-                unit_given.c_str(), unit_given.c_str(), kMinGyroPathRatio, short_paths, tested,
-                worst, unit_given.c_str());
+  std::snprintf(
+      text, sizeof text,
+      "calibrate: the gyroscope, read in %s (--gyro-unit %s), turned less than %g times "
+      "the angle gravity turned in the sensor frame in %d of %d rotations (down to %.3g "
+      "times): a rotation cannot turn gravity further than the sensor turned. Are the "
+      "gyro columns in %s (radians read as degrees give 1/57 of the angle)? Otherwise the "
+      "sample rate "
+      "is too high (--time-column, --rate) or the gyroscope saturated",
+      unit_given.c_str(), unit_given.c_str(), kMinGyroPathRatio, short_paths, tested, worst,
+      unit_given.c_str());
   throw Error(prefixed(path, text));
 }
 
@@ -222,8 +231,8 @@ void check_temperature_unit(const CalibrationResult& r, const std::string& unit_
                 "%.5g K (%.5g to %.5g degC) over the static intervals, %s any IMU's range "
                 "(%g K to %g K)%s",
                 unit_given.c_str(), unit_given.c_str(), r.temperature_min_k, r.temperature_max_k,
-                r.temperature_min_k - 273.15, r.temperature_max_k - 273.15,
-                low ? "below" : "above", kMinImuTemperatureK, kMaxImuTemperatureK,
+                r.temperature_min_k - 273.15, r.temperature_max_k - 273.15, low ? "below" : "above",
+                kMinImuTemperatureK, kMaxImuTemperatureK,
                 low ? ": is the column in degC (--temp-unit degC)?"
                     : ": is the column in K (--temp-unit K) or in raw counts?");
   throw Error(prefixed(path, text));

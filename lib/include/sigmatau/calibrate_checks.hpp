@@ -6,6 +6,7 @@
 /// that was not estimated). Each check throws Error naming the unit the user gave and the
 /// option that sets it; none can trip on a log in the right units (the bounds are stated below).
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,7 @@ void check_gyro_unit(const CalibrationResult& result, const std::string& unit_gi
 /// Rotations tested by check_gyro_rotation_angles: those that turn the calibrated gravity
 /// direction by at least this [rad] (30 deg: well above the direction error of an uncalibrated
 /// accelerometer, a few deg for a bias of 60 mg).
-inline constexpr double kMinTestedGravityTurn = 30.0 * 3.14159265358979323846 / 180;
+inline constexpr double kMinTestedGravityTurn = 30.0 * std::numbers::pi / 180;
 /// The angle a gyroscope integrates across a rotation (the path length, sum of |w - b| dt) is at
 /// least the angle by which gravity turned in the sensor frame (any rotation that turns a vector
 /// by an angle has at least that angle), up to the gain error (a few %); below this fraction [1]
@@ -73,7 +74,7 @@ inline constexpr double kMinGyroPathRatio = 0.5;
 /// % of at most 180 deg: under 10 deg even for 5 % errors); degrees read as radians turn it 57
 /// times too far, so the direction lands at random (more than 30 deg off with probability 0.93).
 /// This test needs no fit: it also catches the logs whose gyroscope fit fails.
-inline constexpr double kMaxRawGyroMisfit = 30.0 * 3.14159265358979323846 / 180;
+inline constexpr double kMaxRawGyroMisfit = 30.0 * std::numbers::pi / 180;
 
 /// Throws Error when, of at least 3 rotations between consecutive static intervals that turn
 /// gravity by kMinTestedGravityTurn or more, at least half have a gyroscope path length below
