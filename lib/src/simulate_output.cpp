@@ -76,7 +76,7 @@ SampleFormat parse_sample_format(std::string_view text) {
   throw Error("unknown format '" + std::string(text) + "'; expected csv, f32 or f64");
 }
 
-std::string simulation_sidecar_json(const SimulationConfig& c) {
+std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat format) {
   validate(c);
   nlohmann::json j;
   j["format"] = "sigmatau-simulation";
@@ -151,7 +151,35 @@ std::string simulation_sidecar_json(const SimulationConfig& c) {
         j[sensor].erase("expected_mean");
       }
   }
+  // The data file as written: csv has the time column first; f32 / f64 hold only the channels
+  // (little-endian rows), so the reader needs their count and the rate.
+  const bool binary = format != SampleFormat::csv;
+  if (binary) columns.erase(columns.begin());
   j["columns"] = columns;
+  {
+    const std::string kind_option =
+        c.kind == OutputKind::increment ? " --kind increment" : std::string();
+    nlohmann::json file{{"format", binary ? (format == SampleFormat::f32 ? "f32" : "f64") : "csv"},
+                        {"rows", c.samples},
+                        {"channels", columns.size()}};
+    std::string rate_text;
+    append_number(rate_text, c.rate_hz);
+    if (binary) {
+      const int bytes = format == SampleFormat::f32 ? 4 : 8;
+      file["layout"] = std::string("little-endian IEEE-754 ") + (bytes == 4 ? "float32" : "float64") +
+                       ", one row of the columns per sample, no header and no time column";
+      file["bytes"] = static_cast<std::int64_t>(bytes) * c.samples *
+                      static_cast<std::int64_t>(columns.size());
+      file["time"] = "sample k (0-based) is at t = " +
+                     std::string(c.kind == OutputKind::increment ? "(k + 1)" : "k") + " / rate_hz s";
+      file["read_with"] = "--binary " + std::string(bytes == 4 ? "f32" : "f64") + " --channels " +
+                          std::to_string(columns.size()) + " --rate " + rate_text + kind_option;
+    } else {
+      file["layout"] = "text, header line then one row per sample; t in s";
+      file["read_with"] = "--time-column t" + kind_option;
+    }
+    j["file"] = file;
+  }
   // Units of the written values (the sidecar's parameters and theory stay SI).
   nlohmann::json units;
   const bool inc = c.kind == OutputKind::increment;
@@ -241,7 +269,7 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
   sidecar_path += ".json";
   check_can_write(path, overwrite);
   check_can_write(sidecar_path, overwrite);
-  const std::string sidecar = simulation_sidecar_json(config);  // validates
+  const std::string sidecar = simulation_sidecar_json(config, format);  // validates
   Simulator simulator(config);
   AtomicOutputFile file(path, overwrite);
   const int nch = simulator.channels();

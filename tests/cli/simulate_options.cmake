@@ -6,7 +6,8 @@ file(MAKE_DIRECTORY ${SIMO_DIR})
 # A checker for files the simulator wrote (cmake -P):
 #   FILE, LINES = "N=REGEX@@N=REGEX..." : line N (1-based) of FILE matches REGEX;
 #   JSON = "a/b/0/c=REGEX@@..."        : that member of the JSON FILE matches REGEX;
-#   COLUMN = i, ALL = REGEX             : field i (0-based) of every line after the header matches.
+#   COLUMN = i, ALL = REGEX             : field i (0-based) of every line after the header matches;
+#   SIZE_FROM_JSON = DATA               : DATA's size in bytes is the JSON FILE's file/bytes.
 file(WRITE ${SIMO_DIR}/check_simulated.cmake [=[
 file(STRINGS "${FILE}" lines)
 set(failed FALSE)
@@ -54,6 +55,16 @@ if(DEFINED COLUMN)
       break()
     endif()
   endforeach()
+endif()
+if(SIZE_FROM_JSON)
+  # The data file SIZE_FROM_JSON has the size the sidecar FILE states in file/bytes.
+  file(READ "${FILE}" text)
+  string(JSON bytes GET "${text}" file bytes)
+  file(SIZE "${SIZE_FROM_JSON}" actual)
+  if(NOT actual EQUAL bytes)
+    message(SEND_ERROR "${SIZE_FROM_JSON}: ${actual} bytes, the sidecar says ${bytes}")
+    set(failed TRUE)
+  endif()
 endif()
 if(failed)
   message(FATAL_ERROR "check failed")
@@ -192,3 +203,26 @@ sigmatau_cli_test(NAME cli_simulate_truth_unit_alone EXIT 2 NO_FILE ${SIMO_DIR}/
 sigmatau_cli_test(NAME cli_simulate_truth_and_positions EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
   WORKING_DIRECTORY ${SIMO_DIR} STDERR "either --truth or --positions"
   ARGS simulate --truth truth.csv --positions 6 --rate 10 -o bad.csv)
+
+# --- review C finding 9: a binary file's sidecar describes the file as written. f32 with gyro,
+# accel and a temperature profile holds 7 channels and no time column: 50 Hz x 4 s x 7 x 4 B =
+# 5600 B, read back with --binary f32 --channels 7 --rate 50; csv keeps t first.
+sigmatau_cli_test(NAME cli_simulate_binary_columns EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "wrote" ARGS simulate --model "N=0.15 deg/sqrt(h)" --accel-model "N=60 ug/sqrt(Hz)"
+       --sensors gyro,accel --temperature "20 degC @ 0 s" --rate 50 --duration 4 --format f32
+       --force -o bin.f32)
+simo_check(cli_simulate_binary_columns_sidecar "cli_simulate_binary_columns"
+  -DFILE=${SIMO_DIR}/bin.f32.json -DSIZE_FROM_JSON=${SIMO_DIR}/bin.f32
+  "-DJSON=columns/0=^gx$@@columns/6=^temp$@@file/channels=^7$@@file/bytes=^5600$@@file/read_with=^--binary f32 --channels 7 --rate 50$")
+sigmatau_cli_test(NAME cli_simulate_binary_f64_increment EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "wrote" ARGS simulate --model "N=0.15 deg/sqrt(h)" --kind increment --rate 100
+       --duration 2 --format f64 --force -o inc.f64)
+simo_check(cli_simulate_binary_f64_increment_sidecar "cli_simulate_binary_f64_increment"
+  -DFILE=${SIMO_DIR}/inc.f64.json -DSIZE_FROM_JSON=${SIMO_DIR}/inc.f64
+  "-DJSON=columns/0=^gx$@@file/read_with=^--binary f64 --channels 3 --rate 100 --kind increment$@@file/time=\\(k \\+ 1\\) / rate_hz")
+# Counts written as f32 (the only binary form simulate writes): 3 channels of whole numbers.
+simo_check(cli_simulate_f32_counts_sidecar "cli_simulate_f32"
+  -DFILE=${SIM_DIR}/sim.f32.json -DSIZE_FROM_JSON=${SIM_DIR}/sim.f32
+  "-DJSON=columns/0=^gx$@@file/read_with=^--binary f32 --channels 3 --rate 50$@@output_units/gyro=^counts$")
+simo_check(cli_simulate_csv_columns_sidecar "cli_simulate_out_unit_si"
+  -DFILE=${SIMO_DIR}/si.csv.json "-DJSON=columns/0=^t$@@columns/1=^gx$@@file/read_with=^--time-column t$")

@@ -259,14 +259,18 @@ class Simulator {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The exact truth of a configuration as JSON text: every parameter in SI, the truth vectors,
-/// the flicker taps and band, and the theoretical AVAR (sampled_avar) per channel at the octave
-/// averaging factors 1, 2, 4, ... <= (samples - 1) / 4.
-std::string simulation_sidecar_json(const SimulationConfig& config);
-
 enum class SampleFormat { csv, f32, f64 };
 /// "csv" | "f32" | "f64"; throws Error otherwise.
 SampleFormat parse_sample_format(std::string_view text);
+
+/// The exact truth of a configuration as JSON text: every parameter in SI, the truth vectors,
+/// the flicker taps and band, and the theoretical AVAR (sampled_avar) per channel at the octave
+/// averaging factors 1, 2, 4, ... <= (samples - 1) / 4. "columns" and "file" describe the data
+/// file as write_simulation writes it in `format`: csv starts with the time column "t"; f32 and
+/// f64 hold only the channels, and "file"/"read_with" gives the options that read it back
+/// (e.g. "--binary f32 --channels 3 --rate 100").
+std::string simulation_sidecar_json(const SimulationConfig& config,
+                                    SampleFormat format = SampleFormat::csv);
 
 /// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az,temp" for the
 /// sensors and temperature present; f32/f64: little-endian rows of the channels, no time column;
