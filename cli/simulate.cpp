@@ -12,6 +12,7 @@
 #include "sigmatau/resources.hpp"
 #include "sigmatau/spec.hpp"
 #include "sigmatau/simulate.hpp"
+#include "sigmatau/simulate_spec.hpp"
 #include "sigmatau/units.hpp"
 #include "verbs.hpp"
 
@@ -230,32 +231,36 @@ void run_simulate(const SimulateArguments& a) {
   c.truth = static_truth(pose);
   if (!a.temperature.empty()) c.temperature_profile = temperature_profile(a.temperature);
   std::optional<DataSheet> sheet;
-  if (!a.spec.empty()) {
-    if (!a.gyro_model.empty() || !a.accel_model.empty()) {
-      throw Error("give either --spec or --model / --accel-model, not both");
+  if (!a.spec.empty()) sheet = load_data_sheet(find_data_sheet(a.spec, resource_dir("specs")));
+  // A sensor's noise: --model / --accel-model when given (it replaces the sheet's terms for that
+  // sensor), else the data sheet's nominal terms (typ, else max) read with the chosen density
+  // convention; a sheet that gives a requested sensor no noise at all is refused, and one that
+  // gives it no white noise is warned about (simulate_spec.hpp). Without either: no noise.
+  const auto noise_of = [&](Sensor sensor, const std::string& model, const char* option,
+                            std::optional<NoiseSource>& source) -> std::array<NoiseTerms, 3> {
+    if (!model.empty()) {
+      if (sheet) source = NoiseSource{option, {}, {}};
+      return axis_models(model, sensor, option);
     }
-    sheet = load_data_sheet(find_data_sheet(a.spec, resource_dir("specs")));
-  }
-  // A data sheet's noise terms, nominal values (typ, else max), read with the chosen density
-  // convention (convert.hpp); a sensor the sheet does not describe is simulated noise-free.
-  const auto sheet_noise = [&](Sensor sensor) -> std::array<NoiseTerms, 3> {
-    if (!sheet || !sheet->sensor(sensor)) return {};
-    return triad_from_data_sheet(*sheet, sensor, parse_density_convention(a.convention)).axes;
+    if (!sheet) return {};
+    const SheetNoise noise =
+        simulation_noise_from_data_sheet(*sheet, sensor, parse_density_convention(a.convention));
+    if (const std::string warning = sheet_noise_warning(*sheet, sensor, noise); !warning.empty())
+      std::cerr << warning << "\n";
+    source = NoiseSource{"data sheet " + sheet->name, noise.read, noise.left_out};
+    return noise.axes;
   };
   for (const auto& s : split_list(a.sensors, "--sensors")) {
     if (s == "gyro") {
       ErrorModel m;
-      m.noise = sheet_noise(Sensor::gyro);
-      if (!a.gyro_model.empty()) m.noise = axis_models(a.gyro_model, Sensor::gyro, "--model");
+      m.noise = noise_of(Sensor::gyro, a.gyro_model, "--model", c.gyro_noise_source);
       if (!a.gyro_bias.empty()) m.bias = triple(a.gyro_bias, dim::angular_rate, "--gyro-bias");
       apply_error_model(m, a.gyro_scale, a.gyro_misalignment, a.gyro_temp_coef, dim::angular_rate,
                         "gyro");
       c.gyro = m;
     } else if (s == "accel") {
       ErrorModel m;
-      m.noise = sheet_noise(Sensor::accel);
-      if (!a.accel_model.empty())
-        m.noise = axis_models(a.accel_model, Sensor::accel, "--accel-model");
+      m.noise = noise_of(Sensor::accel, a.accel_model, "--accel-model", c.accel_noise_source);
       if (!a.accel_bias.empty()) m.bias = triple(a.accel_bias, dim::acceleration, "--accel-bias");
       apply_error_model(m, a.accel_scale, a.accel_misalignment, a.accel_temp_coef,
                         dim::acceleration, "accel");
@@ -333,7 +338,9 @@ void add_simulate_command(CLI::App& app) {
                       "z: N=0.2 deg/sqrt(h), B=5 deg/h\" (labels x, y, z or groups; an axis not "
                       "named has no noise)");
   command->add_option("--spec", args->spec,
-                      "simulate the noise terms of a data sheet (file or name in specs/)");
+                      "simulate the noise terms of a data sheet (file or name in specs/); "
+                      "--model / --accel-model replace its terms for that sensor; a sensor the "
+                      "sheet gives no noise term is refused, one without white noise warned about");
   command->add_option("--density-convention", args->convention,
                       "how --spec's noise density is read: two-sided (N = ND) or one-sided")
       ->capture_default_str();

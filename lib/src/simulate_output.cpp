@@ -192,6 +192,12 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
   if (c.accel) units["accel"] = unit_name(c.accel_unit, "m/s^2", "m/s");
   if (c.temperature_profile) units["temp"] = "K";
   j["output_units"] = units;
+  for (const auto& [source, sensor] : {std::pair{&c.gyro_noise_source, "gyro"},
+                                        std::pair{&c.accel_noise_source, "accel"}})
+    if (*source && j.contains(sensor))
+      j[sensor]["noise_source"] = {{"origin", (*source)->origin},
+                                   {"read", (*source)->read},
+                                   {"left_out", (*source)->left_out}};
   if (c.gyro && c.gyro_quantizer_step > 0) j["gyro"]["quantizer_step"] = c.gyro_quantizer_step;
   if (c.accel && c.accel_quantizer_step > 0) j["accel"]["quantizer_step"] = c.accel_quantizer_step;
   if (c.kind == OutputKind::counts) {

@@ -187,6 +187,13 @@ struct OutputUnit {
   double factor = 1;  ///< SI value of one unit [SI / unit], > 0
 };
 
+/// Where a sensor's noise terms came from, recorded in the sidecar as "<sensor>/noise_source".
+struct NoiseSource {
+  std::string origin;                 ///< e.g. "data sheet tdk_icm42688p" or "--model"
+  std::vector<std::string> read;      ///< how each term was read (simulate_spec.hpp)
+  std::vector<std::string> left_out;  ///< terms the source does not give (simulated as zero)
+};
+
 struct SimulationConfig {
   double rate_hz = 0;          ///< sample rate [Hz]
   std::int64_t samples = 0;    ///< number of samples
@@ -220,6 +227,8 @@ struct SimulationConfig {
   /// flicker_band(L).m_high tau0.
   std::int64_t flicker_max_taps = std::int64_t{1} << 20;
   unsigned threads = 1;             ///< worker threads (results do not depend on it)
+  std::optional<NoiseSource> gyro_noise_source;   ///< recorded in the sidecar when present
+  std::optional<NoiseSource> accel_noise_source;  ///< recorded in the sidecar when present
 };
 
 /// Throws Error on a bad configuration (rate, samples, no sensor, bad model, counts format).

@@ -1,0 +1,44 @@
+#pragma once
+/// \file simulate_spec.hpp
+/// The noise terms `simulate --spec` takes from a data sheet, with what the sheet leaves out.
+///
+/// A sheet prints some of the terms the simulator knows (white noise as a random walk or a noise
+/// density, bias instability, rate random walk) and not others. A term the sheet does not print
+/// would be simulated as zero, so the caller is told: a sensor with no noise term at all is an
+/// Error (its log would be noise-free or constant), and the terms left out are listed so that a
+/// sensor simulated without white noise can be warned about and recorded in the sidecar.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sigmatau/convert.hpp"
+#include "sigmatau/noise_model.hpp"
+#include "sigmatau/spec.hpp"
+
+namespace sigmatau {
+
+/// One sensor's noise as a data sheet gives it to the simulator.
+struct SheetNoise {
+  std::array<NoiseTerms, 3> axes;  ///< the same terms on x, y, z [SI, as NoiseTerms]
+  /// How each simulated term was read, e.g. "noise density 2.8 mdps/√Hz (typ) read as N = ND
+  /// (two-sided)"; one entry per term taken from the sheet.
+  std::vector<std::string> read;
+  /// The terms the sheet does not print, simulated as zero, e.g. "white noise (no angle random
+  /// walk or noise density)"; a printed RMS noise that gives no density is named here too.
+  std::vector<std::string> left_out;
+  bool has_white = false;  ///< the sheet gives white noise (the term most logs are made of)
+};
+
+/// The nominal (typ, else max) noise terms of `sensor` on `sheet` (triad_from_data_sheet, with
+/// the density `convention`) and the terms it leaves out. Throws Error naming the sheet, the
+/// sensor and the options that give the terms (--model / --accel-model) when the sheet has no
+/// section for the sensor or prints none of its noise terms.
+SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor sensor,
+                                            DensityConvention convention);
+
+/// One line for stderr when `noise` has no white noise: names the sheet, the sensor, every term
+/// left out and the option that supplies them; empty when white noise is given.
+std::string sheet_noise_warning(const DataSheet& sheet, Sensor sensor, const SheetNoise& noise);
+
+}  // namespace sigmatau

@@ -1,0 +1,91 @@
+// The noise terms `simulate --spec` takes from a data sheet and the terms the sheet leaves out.
+
+#include "sigmatau/simulate_spec.hpp"
+
+#include "sigmatau/error.hpp"
+
+namespace sigmatau {
+namespace {
+
+std::string sensor_name(Sensor sensor) { return std::string(to_string(sensor)); }
+
+/// The option that gives a sensor's terms by hand.
+std::string model_option(Sensor sensor) {
+  return sensor == Sensor::gyro ? "--model" : "--accel-model";
+}
+
+std::string model_example(Sensor sensor) {
+  return sensor == Sensor::gyro ? "\"N=0.15 deg/sqrt(h), B=3 deg/h\""
+                                : "\"N=60 ug/sqrt(Hz), B=0.05 mg\"";
+}
+
+/// "ADI ADIS16465 (adi_adis16465)".
+std::string sheet_label(const DataSheet& sheet) {
+  return "data sheet " + sheet.name + " (" + sheet.manufacturer + " " + sheet.part + ")";
+}
+
+/// Splits "a; b" as triad_from_data_sheet joins its bias origins.
+void append_parts(std::vector<std::string>& out, const std::string& text) {
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find("; ", start), text.size());
+    if (end > start) out.push_back(text.substr(start, end - start));
+    start = end + 2;
+  }
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string s;
+  for (const auto& item : items) s += (s.empty() ? "" : separator) + item;
+  return s;
+}
+
+}  // namespace
+
+SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor sensor,
+                                            DensityConvention convention) {
+  const std::string what = sensor_name(sensor);
+  const std::string remedy = "give the " + what + " terms with " + model_option(sensor) + ", e.g. " +
+                             model_example(sensor) + " (it replaces the sheet's " + what +
+                             " terms), or leave " + what + " out of --sensors";
+  const SensorSheet* section = sheet.sensor(sensor);
+  if (!section)
+    throw Error(sheet_label(sheet) + " has no " + what + " section, so its " + what +
+                " would be simulated without noise; " + remedy);
+  const TriadNoise triad = triad_from_data_sheet(sheet, sensor, convention);
+  SheetNoise out;
+  out.axes = triad.axes;
+  const NoiseTerms& t = triad.axes[0];
+  out.has_white = t.white.has_value();
+  if (t.white) out.read.push_back(triad.white_origin);
+  append_parts(out.read, triad.bias_origin);
+
+  const std::string random_walk =
+      sensor == Sensor::gyro ? "angle random walk" : "velocity random walk";
+  // A printed RMS noise is a total over the output band: without the band's noise bandwidth it
+  // gives no density, so it is named, not used.
+  std::string rms_remark;
+  if (const SpecValue* rms = section->find(SpecField::rms_noise); rms && rms->nominal())
+    rms_remark = "; its RMS noise " + rms->nominal()->text +
+                 " is a total over the output band, not a density";
+  if (!t.white)
+    out.left_out.push_back("white noise (no " + random_walk + " or noise density" + rms_remark +
+                           ")");
+  if (!t.bias_instability) out.left_out.push_back("bias instability");
+  if (!t.rate_random_walk) out.left_out.push_back("rate random walk");
+  if (!t.white && !t.bias_instability && !t.rate_random_walk)
+    throw Error(sheet_label(sheet) + " prints no " + what + " noise term (no " + random_walk +
+                ", noise density, bias instability or rate random walk" + rms_remark + "), so the " +
+                what + " would be simulated without noise; " + remedy);
+  return out;
+}
+
+std::string sheet_noise_warning(const DataSheet& sheet, Sensor sensor, const SheetNoise& noise) {
+  if (noise.has_white) return {};
+  const std::string what = sensor_name(sensor);
+  return "warning: " + sheet_label(sheet) + " prints no white noise for the " + what +
+         ", so the " + what + " is simulated with " + join(noise.read, " and ") +
+         " only; left out: " + join(noise.left_out, ", ") + " (give " + model_option(sensor) +
+         " to supply the " + what + " terms)";
+}
+
+}  // namespace sigmatau

@@ -1,0 +1,91 @@
+// `simulate --spec`: the noise terms a data sheet gives the simulator and the ones it leaves out
+// (review C finding 8). Uses the shipped sheets in specs/.
+#include "sigmatau/simulate_spec.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "sigmatau/error.hpp"
+
+using namespace sigmatau;
+
+namespace {
+
+const std::filesystem::path kSpecsDir = std::filesystem::path(SIGMATAU_SOURCE_DIR) / "specs";
+
+DataSheet sheet(const char* name) { return load_data_sheet(kSpecsDir / (std::string(name) + ".yaml")); }
+
+/// The Error message of simulation_noise_from_data_sheet, or "" when it does not throw.
+std::string refusal(const DataSheet& s, Sensor sensor) {
+  try {
+    (void)simulation_noise_from_data_sheet(s, sensor, DensityConvention::two_sided);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("a sensor the sheet gives no noise term is refused, naming the sheet and the option") {
+  SUBCASE("BMI088 accelerometer: no noise field at all") {
+    const std::string m = refusal(sheet("bosch_bmi088"), Sensor::accel);
+    CHECK(contains(m, "data sheet bosch_bmi088"));
+    CHECK(contains(m, "prints no accel noise term"));
+    CHECK(contains(m, "--accel-model"));
+    CHECK(refusal(sheet("bosch_bmi088"), Sensor::gyro).empty());  // its gyro density is read
+  }
+  SUBCASE("LSM6DSO gyro: ranges only") {
+    const std::string m = refusal(sheet("st_lsm6dso"), Sensor::gyro);
+    CHECK(contains(m, "prints no gyro noise term"));
+    CHECK(contains(m, "--model"));
+  }
+  SUBCASE("LSM6DSO accelerometer: an RMS noise, which is no density, is named") {
+    const std::string m = refusal(sheet("st_lsm6dso"), Sensor::accel);
+    CHECK(contains(m, "prints no accel noise term"));
+    CHECK(contains(m, "RMS noise 1.8 mg is a total over the output band, not a density"));
+  }
+}
+
+TEST_CASE("a sensor without white noise is simulated with what the sheet prints, and warned about") {
+  for (const char* name : {"adi_adis16465", "adi_adis16470", "adi_adis16505"}) {
+    CAPTURE(name);
+    const DataSheet s = sheet(name);
+    const SheetNoise n = simulation_noise_from_data_sheet(s, Sensor::accel,
+                                                          DensityConvention::two_sided);
+    CHECK_FALSE(n.has_white);
+    CHECK_FALSE(n.axes[0].white.has_value());
+    CHECK(n.axes[2].bias_instability.has_value());
+    REQUIRE(n.left_out.size() == 2);
+    CHECK(contains(n.left_out[0], "white noise (no velocity random walk or noise density)"));
+    CHECK(n.left_out[1] == "rate random walk");
+    REQUIRE(n.read.size() == 1);
+    CHECK(contains(n.read[0], "in-run bias stability"));
+    const std::string w = sheet_noise_warning(s, Sensor::accel, n);
+    CHECK(contains(w, "warning: data sheet " + std::string(name)));
+    CHECK(contains(w, "prints no white noise for the accel"));
+    CHECK(contains(w, "left out: white noise"));
+    CHECK(contains(w, "--accel-model"));
+  }
+}
+
+TEST_CASE("a sheet with white noise gives it, with no warning, and lists what it lacks") {
+  const DataSheet s = sheet("tdk_icm42688p");
+  const SheetNoise n = simulation_noise_from_data_sheet(s, Sensor::gyro, DensityConvention::two_sided);
+  CHECK(n.has_white);
+  CHECK(sheet_noise_warning(s, Sensor::gyro, n).empty());
+  REQUIRE(n.read.size() == 1);
+  CHECK(contains(n.read[0], "noise density 2.8"));
+  CHECK(n.left_out == std::vector<std::string>{"bias instability", "rate random walk"});
+  // STIM300's accelerometer: the velocity random walk is N itself.
+  const SheetNoise a = simulation_noise_from_data_sheet(sheet("safran_stim300"), Sensor::accel,
+                                                        DensityConvention::two_sided);
+  CHECK(a.has_white);
+  CHECK(a.left_out == std::vector<std::string>{"rate random walk"});
+}
