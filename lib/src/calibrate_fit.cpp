@@ -100,8 +100,16 @@ Eigen::MatrixXd covariance_of(const Eigen::MatrixXd& jacobian, const std::string
   if (!(cond <= kMaxCondition)) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.3g", cond);
+    // What the schedule lacks, for the fit that found it out.
+    std::string advice;
+    if (what.rfind("accelerometer", 0) == 0) {
+      advice = ": rest the IMU in at least 9 orientations spread over the sphere, not all in one "
+               "plane through an axis (the 6 faces plus 3 or more tilted 45 deg between faces)";
+    } else if (what.rfind("gyroscope rotation", 0) == 0) {
+      advice = ": turn the IMU about each of its three axes between rests";
+    }
     throw Error(what + ": the data do not determine every parameter (condition number " + buffer +
-                " > 1e10)");
+                " > 1e10)" + advice);
   }
   const Eigen::MatrixXd inv = scaled.inverse();
   return d.cwiseInverse().asDiagonal() * inv * d.cwiseInverse().asDiagonal();

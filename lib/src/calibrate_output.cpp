@@ -48,6 +48,19 @@ json triad_json(const TriadCalibration& t, const char* unit, double confidence) 
   j["bias_ci"] = bias_ci;
   j["bias_se"] = bias_se;
   j["bias_norm"] = std::hypot(t.bias[0].value, t.bias[1].value, t.bias[2].value);
+  if (t.earth_rate) {
+    // The gyro bias was fitted with the Earth rate of the first static interval, carried into the
+    // others by the attitudes from the integrated rotations ("heading"); its unknown part was
+    // otherwise independent noise per interval ("noise").
+    j["earth_rate_model"] = "heading";
+    j["earth_rate_first_interval"] = {(*t.earth_rate)[0], (*t.earth_rate)[1], (*t.earth_rate)[2]};
+    j["earth_rate_first_interval_se"] = {std::sqrt(t.earth_rate_covariance(0, 0)),
+                                         std::sqrt(t.earth_rate_covariance(1, 1)),
+                                         std::sqrt(t.earth_rate_covariance(2, 2))};
+    j["earth_rate_norm"] = t.earth_rate->norm();
+  } else if (std::string(unit) == "rad/s") {
+    j["earth_rate_model"] = "noise";
+  }
   if (t.matrix_estimated) {
     j["matrix"] = matrix_json(t.matrix);
     j["matrix_se"] = matrix_json(t.matrix_se);
@@ -237,6 +250,19 @@ std::string calibration_table(const CalibrationResult& r) {
     std::snprintf(line, sizeof line, "  |b|               %11.5g %s\n",
                   k * std::hypot(t.bias[0].value, t.bias[1].value, t.bias[2].value), unit);
     out << line;
+    if (r.gyro && &t == &*r.gyro) {
+      if (t.earth_rate) {
+        std::snprintf(line, sizeof line,
+                      "  Earth rate: fitted with the bias, turned into each rest by the integrated "
+                      "rotations: |w| = %.4g deg/h (the Earth turns at 15.04)\n",
+                      t.earth_rate->norm() * kDegPerRad * 3600);
+      } else {
+        std::snprintf(line, sizeof line,
+                      "  Earth rate: its unknown part taken as noise in each rest (wider bias "
+                      "intervals)\n");
+      }
+      out << line;
+    }
     if (t.temperature)
       for (int i = 0; i < 3; ++i) {
         const auto& a = (*t.temperature)[static_cast<std::size_t>(i)];

@@ -114,3 +114,13 @@ sigmatau_cli_test(NAME cli_calibrate_temp_flat_note EXIT 0 WORKING_DIRECTORY ${C
   STDERR "note: accelerometer: no bias temperature model \\(the static intervals span only 0\\.[0-9]+ K of temperature \\(under 1 K\\)\\).*note: gyroscope: no bias temperature model \\(the static intervals span only"
   ARGS calibrate tflat.csv --time-column t)
 set_tests_properties(cli_calibrate_temp_flat_note PROPERTIES DEPENDS cli_calibrate_temp_flat_sim)
+# The gyro bias is fitted with the Earth rate of the first rest, turned into the others by the
+# integrated rotations: the table and the JSON say so (the norm is printed, ~15 deg/h).
+sigmatau_cli_test(NAME cli_calibrate_earth_rate_table EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
+  STDOUT "Earth rate: fitted with the bias, turned into each rest by the integrated rotations: \\|w\\| = 1[45]\\.[0-9]+ deg/h"
+  ARGS calibrate cal.csv --time-column t --latitude 45)
+set_tests_properties(cli_calibrate_earth_rate_table PROPERTIES DEPENDS cli_calibrate_simulate)
+sigmatau_cli_test(NAME cli_calibrate_earth_rate_json EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
+  STDOUT "\"earth_rate_model\": \"heading\""
+  ARGS calibrate cal.csv --time-column t --latitude 45 --format json)
+set_tests_properties(cli_calibrate_earth_rate_json PROPERTIES DEPENDS cli_calibrate_simulate)
