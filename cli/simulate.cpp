@@ -315,6 +315,8 @@ void run_simulate(const SimulateArguments& a) {
     throw Error("--truth-unit is given without --truth");
   }
   const SampleFormat format = parse_sample_format(a.format);
+  validate(c);
+  for (const auto& warning : simulation_warnings(c)) std::cerr << "warning: " << warning << "\n";
   const bool tty = stderr_is_tty();
   write_simulation(c, a.output, format, a.force, [tty](std::int64_t done, std::int64_t total) {
     if (tty) std::cerr << "\rsimulate: " << (100 * done / total) << "%" << std::flush;

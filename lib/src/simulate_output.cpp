@@ -11,6 +11,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/simulate.hpp"
+#include "simulate_quantizer.hpp"
 
 namespace sigmatau {
 namespace {
@@ -239,9 +240,15 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
   std::vector<double> flicker_unit;
   if (any_flicker)
     for (std::int64_t m : ms) flicker_unit.push_back(flicker_avar_per_unit(m, sampling.flicker_taps));
-  const auto curves = [&](const ErrorModel& model, const char* prefix, double quantizer_step) {
+  bool quantizer_exact = false, quantizer_additive = false;
+  const auto curves = [&](const ErrorModel& model, const char* prefix, double quantizer_step,
+                          const Eigen::Vector3d& truth) {
+    const Eigen::Vector3d drift = model.deterministic_output(truth, c.temperature_k);
     for (int axis = 0; axis < 3; ++axis) {
       const NoiseTerms& terms = model.noise[static_cast<std::size_t>(axis)];
+      const bool exact = quantizer_step > 0 && detail::real_quantizer_exact(c, terms);
+      quantizer_exact = quantizer_exact || exact;
+      quantizer_additive = quantizer_additive || (quantizer_step > 0 && !exact);
       std::vector<double> avar;
       for (std::size_t i = 0; i < ms.size(); ++i) {
         double total = 0;
@@ -249,7 +256,10 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
           if (term != NoiseTerm::bias_instability) total += sampled_avar(terms, term, ms[i], sampling);
         if (terms.bias_instability)
           total += *terms.bias_instability * *terms.bias_instability * flicker_unit[i];
-        if (quantizer_step > 0) {  // additive equivalent Q = step / sqrt(12): 3 Q^2 / tau^2
+        if (exact) {
+          total += detail::real_quantizer_avar(quantizer_step, ms[i], sampling.tau0_s, terms,
+                                               drift[axis]);
+        } else if (quantizer_step > 0) {  // additive equivalent Q = step / sqrt(12): 3 Q^2 / tau^2
           const double tau = static_cast<double>(ms[i]) * sampling.tau0_s;
           total += quantizer_step * quantizer_step / (4 * tau * tau);
         }
@@ -258,12 +268,24 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
       theory["avar"][std::string(prefix) + "xyz"[axis]] = avar;
     }
   };
-  if (c.gyro) curves(*c.gyro, "g", c.gyro_quantizer_step);
-  if (c.accel) curves(*c.accel, "a", c.accel_quantizer_step);
-  if (c.gyro_quantizer_step > 0 || c.accel_quantizer_step > 0)
-    theory["quantizer"] =
-        "the real quantizer is included as its additive equivalent 3 Q^2/tau^2, Q = step/sqrt(12) "
-        "(exact when the other noise spans several steps per sample)";
+  if (c.gyro) curves(*c.gyro, "g", c.gyro_quantizer_step, c.truth.angular_rate);
+  if (c.accel) curves(*c.accel, "a", c.accel_quantizer_step, c.truth.specific_force);
+  if (quantizer_exact || quantizer_additive) {
+    std::string text;
+    if (quantizer_exact)
+      text = "the real quantizer's AVAR is exact for the channels whose noise is white, "
+             "additive Q and Gauss-Markov with a constant truth (rounding error of the "
+             "integrated output as a sawtooth, averaged over a uniform start phase; "
+             "lib/src/simulate_quantizer.hpp); it equals 3 Q^2/tau^2, Q = step/sqrt(12), only "
+             "when the noise moves the output over several steps per sample";
+    if (quantizer_additive)
+      text += std::string(text.empty() ? "" : ". ") +
+              "on the other channels the real quantizer is included as its additive equivalent "
+              "3 Q^2/tau^2, Q = step/sqrt(12) (within 0.6 % when the step is at most 2x the "
+              "per-sample white noise; otherwise approximate, see warnings)";
+    theory["quantizer"] = text;
+  }
+  if (const auto warnings = simulation_warnings(c); !warnings.empty()) j["warnings"] = warnings;
   j["theory"] = theory;
   return j.dump(2) + "\n";
 }

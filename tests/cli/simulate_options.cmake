@@ -253,3 +253,22 @@ sigmatau_cli_test(NAME cli_simulate_spec_with_accel_model EXIT 0 WORKING_DIRECTO
 simo_check(cli_simulate_spec_with_accel_model_sidecar "cli_simulate_spec_with_accel_model"
   -DFILE=${SIMO_DIR}/bmi.csv.json
   "-DJSON=accel/noise_source/origin=^--accel-model$@@gyro/noise_source/origin=^data sheet bosch_bmi088$@@accel/noise/0/white=^0\\.00186")
+
+# --- review C finding 5: a real quantizer 40x the per-sample noise (0.01 deg against
+# 0.15 deg/sqrt(h) x sqrt(10 ms) = 2.5e-4 deg). White noise only: the sidecar's exact theory gives
+# ADEV(10 ms) = 580 deg/h, AVAR 7.9e-6 (rad/s)^2, as the log measures (tests/
+# test_simulate_quantizer.cpp), not 1802 deg/h = 7.6e-5 from 3 Q^2/tau^2.
+sigmatau_cli_test(NAME cli_simulate_coarse_quantizer EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "wrote" ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 100 --duration 5min
+       --gyro-quantizer "0.01 deg" --force -o coarse.csv)
+simo_check(cli_simulate_coarse_quantizer_sidecar "cli_simulate_coarse_quantizer"
+  -DFILE=${SIMO_DIR}/coarse.csv.json
+  "-DJSON=theory/avar/gx/0=^7\\.9[0-9]*e-06$@@theory/quantizer=^the real quantizer's AVAR is exact")
+# With flicker there is no exact theory: a warning on stderr and in the sidecar.
+sigmatau_cli_test(NAME cli_simulate_coarse_quantizer_flicker EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+  STDOUT "wrote"
+  STDERR "warning: the gyro quantizer step is 40x the per-sample white noise on gx, gy, gz"
+  ARGS simulate --model "N=0.15 deg/sqrt(h), B=1 deg/h" --rate 100 --duration 1min
+       --gyro-quantizer "0.01 deg" --force -o coarse_b.csv)
+simo_check(cli_simulate_coarse_quantizer_flicker_sidecar "cli_simulate_coarse_quantizer_flicker"
+  -DFILE=${SIMO_DIR}/coarse_b.csv.json "-DJSON=warnings/0=^the gyro quantizer step is 40x")

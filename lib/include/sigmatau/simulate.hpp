@@ -217,7 +217,9 @@ struct SimulationConfig {
   /// from sample to sample, so each increment is an integer number of steps and each rate sample
   /// an integer number of steps / tau0. Unlike the additive Q term this is a deterministic
   /// function of the signal; when the other noise spans several steps per sample, it adds
-  /// 3 Q^2 / tau^2 to the AVAR with Q = step / sqrt(12) (the sidecar's theory includes it so).
+  /// 3 Q^2 / tau^2 to the AVAR with Q = step / sqrt(12). The sidecar's theory uses the exact
+  /// AVAR for a coarser step when the model allows (white, Q and Gauss-Markov noise, constant
+  /// truth; lib/src/simulate_quantizer.hpp), else 3 Q^2 / tau^2 and simulation_warnings().
   double gyro_quantizer_step = 0;
   double accel_quantizer_step = 0;
   OutputUnit gyro_unit;             ///< unit of the written gyro values (see OutputUnit)
@@ -233,6 +235,12 @@ struct SimulationConfig {
 
 /// Throws Error on a bad configuration (rate, samples, no sensor, bad model, counts format).
 void validate(const SimulationConfig& config);
+
+/// Lines for the user about a valid configuration whose sidecar theory is only approximate: a
+/// real quantizer step more than 2x the per-sample white noise on an axis whose model has no
+/// exact quantizer theory (flicker, rate random walk, ramp, sinusoid, schedule, truth series,
+/// temperature profile; see lib/src/simulate_quantizer.hpp). The sidecar records them too.
+std::vector<std::string> simulation_warnings(const SimulationConfig& config);
 
 /// Taps of the flicker filter used for a configuration: the smallest power of two >= samples
 /// (at least kRandomSubBlock), capped at flicker_max_taps.
