@@ -251,6 +251,13 @@ std::vector<std::string> calibration_notes(const CalibrationResult& r) {
   const auto triad = [&](const TriadCalibration& t, const char* name) {
     if (!t.matrix_estimated)
       notes.push_back(std::string(name) + ": matrix not estimated, only the bias: " + t.note);
+    // As many parameters as equations: the fit passes through the data, the residuals cannot
+    // test the model, and the intervals rest on the noise alone (6 faces + 3 in one plane gave
+    // cross-axis intervals of +-370 % and no word).
+    if (t.matrix_estimated && t.dof <= 0)
+      notes.push_back(std::string(name) + ": the fit has " + std::to_string(t.dof) +
+                      " degrees of freedom (as many parameters as equations): its residuals "
+                      "cannot test the model; rest the IMU in more orientations");
     if (!r.has_temperature || t.temperature) return;
     char reason[160];
     if (span < kMinTemperatureSpanK)

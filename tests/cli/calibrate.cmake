@@ -124,3 +124,14 @@ sigmatau_cli_test(NAME cli_calibrate_earth_rate_json EXIT 0 WORKING_DIRECTORY ${
   STDOUT "\"earth_rate_model\": \"heading\""
   ARGS calibrate cal.csv --time-column t --latitude 45 --format json)
 set_tests_properties(cli_calibrate_earth_rate_json PROPERTIES DEPENDS cli_calibrate_simulate)
+# Nine orientations for the accelerometer's nine parameters: the fit passes through the data and
+# its residuals test nothing; the note says so (stderr and table).
+sigmatau_cli_test(NAME cli_calibrate_nine_positions_sim EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
+  STDOUT "wrote p9\\.csv"
+  ARGS simulate --model "N=0.005 deg/s/sqrt(Hz)" --accel-model "N=100 ug/sqrt(Hz)" --rate 100
+       --sensors gyro,accel --positions 9 --dwell "10 s" --latitude "45 deg" --seed 7 --force -o p9.csv)
+sigmatau_cli_test(NAME cli_calibrate_zero_dof_note EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
+  STDERR "accelerometer: the fit has 0 degrees of freedom \\(as many parameters as equations\\)"
+  STDOUT "notes:.*accelerometer: the fit has 0 degrees of freedom"
+  ARGS calibrate p9.csv --time-column t --latitude 45)
+set_tests_properties(cli_calibrate_zero_dof_note PROPERTIES DEPENDS cli_calibrate_nine_positions_sim)
