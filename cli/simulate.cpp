@@ -392,7 +392,11 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--sensors", args->sensors, "gyro, accel or gyro,accel")
       ->capture_default_str();
   command->add_option("--kind", args->kind, "rate | increment | counts")->capture_default_str();
-  command->add_option("--format", args->format, "csv | f32 | f64")->capture_default_str();
+  command->add_option("--format", args->format,
+                      "csv | f32 | f64 | i16 | i32 (binary: little-endian rows of the channels, "
+                      "no time column; i16 / i32 with --kind counts only); FILE.json says how to "
+                      "read it back")
+      ->capture_default_str();
   command->add_option("-o,--output", args->output, "output FILE (and FILE.json)")->required();
   command->add_flag("--force", args->force, "overwrite existing files");
   command->add_option("--roll", args->roll, "roll of the sensor frame, e.g. \"10 deg\"")

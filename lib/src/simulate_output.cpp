@@ -4,8 +4,10 @@
 
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <future>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "sigmatau/error.hpp"
@@ -74,11 +76,47 @@ SampleFormat parse_sample_format(std::string_view text) {
   if (text == "csv") return SampleFormat::csv;
   if (text == "f32") return SampleFormat::f32;
   if (text == "f64") return SampleFormat::f64;
-  throw Error("unknown format '" + std::string(text) + "'; expected csv, f32 or f64");
+  if (text == "i16") return SampleFormat::i16;
+  if (text == "i32") return SampleFormat::i32;
+  throw Error("unknown format '" + std::string(text) + "'; expected csv, f32, f64, i16 or i32");
+}
+
+std::string_view to_string(SampleFormat format) {
+  switch (format) {
+    case SampleFormat::csv: return "csv";
+    case SampleFormat::f32: return "f32";
+    case SampleFormat::f64: return "f64";
+    case SampleFormat::i16: return "i16";
+    case SampleFormat::i32: return "i32";
+  }
+  return "?";
+}
+
+void check_sample_format(const SimulationConfig& c, SampleFormat format) {
+  if (format != SampleFormat::i16 && format != SampleFormat::i32) return;
+  const std::string name(to_string(format));
+  if (c.kind != OutputKind::counts)
+    throw Error("format " + name + " writes integers: it needs --kind counts (with --gyro-lsb / "
+                "--accel-lsb); use f32 or f64 for kind " + std::string(to_string(c.kind)));
+  if (c.temperature_profile)
+    throw Error("format " + name + " cannot hold the temperature channel (K, not counts); use "
+                "f32, f64 or csv with a temperature profile");
+  const double limit = format == SampleFormat::i16 ? 32767 : 2147483647;
+  for (const auto& [present, counts, sensor] :
+       {std::tuple{c.gyro.has_value(), c.gyro_counts, "gyro"},
+        std::tuple{c.accel.has_value(), c.accel_counts, "accel"}})
+    if (present && !(std::floor(counts.full_scale / counts.lsb) <= limit))
+      throw Error(std::string("format ") + name + ": the " + sensor + " full scale is " +
+                  std::to_string(static_cast<long long>(
+                      std::min(std::floor(counts.full_scale / counts.lsb), 9.0e18))) +
+                  " LSB, more than " +
+                  (format == SampleFormat::i16 ? "32767" : "2147483647") + "; use " +
+                  (format == SampleFormat::i16 ? "i32" : "f64") + " or a larger LSB");
 }
 
 std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat format) {
   validate(c);
+  check_sample_format(c, format);
   nlohmann::json j;
   j["format"] = "sigmatau-simulation";
   j["schema_version"] = 1;
@@ -160,20 +198,26 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
   {
     const std::string kind_option =
         c.kind == OutputKind::increment ? " --kind increment" : std::string();
-    nlohmann::json file{{"format", binary ? (format == SampleFormat::f32 ? "f32" : "f64") : "csv"},
+    nlohmann::json file{{"format", std::string(to_string(format))},
                         {"rows", c.samples},
                         {"channels", columns.size()}};
     std::string rate_text;
     append_number(rate_text, c.rate_hz);
     if (binary) {
-      const int bytes = format == SampleFormat::f32 ? 4 : 8;
-      file["layout"] = std::string("little-endian IEEE-754 ") + (bytes == 4 ? "float32" : "float64") +
+      const int bytes = format == SampleFormat::i16                                   ? 2
+                        : format == SampleFormat::f32 || format == SampleFormat::i32 ? 4
+                                                                                      : 8;
+      const char* type = format == SampleFormat::i16   ? "two's-complement int16"
+                         : format == SampleFormat::i32 ? "two's-complement int32"
+                         : format == SampleFormat::f32 ? "IEEE-754 float32"
+                                                       : "IEEE-754 float64";
+      file["layout"] = std::string("little-endian ") + type +
                        ", one row of the columns per sample, no header and no time column";
       file["bytes"] = static_cast<std::int64_t>(bytes) * c.samples *
                       static_cast<std::int64_t>(columns.size());
       file["time"] = "sample k (0-based) is at t = " +
                      std::string(c.kind == OutputKind::increment ? "(k + 1)" : "k") + " / rate_hz s";
-      file["read_with"] = "--binary " + std::string(bytes == 4 ? "f32" : "f64") + " --channels " +
+      file["read_with"] = "--binary " + std::string(to_string(format)) + " --channels " +
                           std::to_string(columns.size()) + " --rate " + rate_text + kind_option;
     } else {
       file["layout"] = "text, header line then one row per sample; t in s";
@@ -309,6 +353,8 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
                                               : 1.0);
   std::string text;
   std::vector<float> floats;
+  std::vector<std::int16_t> int16s;
+  std::vector<std::int32_t> int32s;
   if (format == SampleFormat::csv) {
     text = "t";
     for (const auto& n : simulator.channel_names()) text += "," + n;
@@ -345,9 +391,17 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
         file.write(text);
       } else if (format == SampleFormat::f64) {
         file.write({reinterpret_cast<const char*>(block.data()), values * sizeof(double)});
-      } else {
+      } else if (format == SampleFormat::f32) {
         floats.assign(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(values));
         file.write({reinterpret_cast<const char*>(floats.data()), values * sizeof(float)});
+      } else if (format == SampleFormat::i16) {  // whole counts within +-32767 (checked)
+        int16s.resize(values);
+        for (std::size_t i = 0; i < values; ++i) int16s[i] = static_cast<std::int16_t>(block[i]);
+        file.write({reinterpret_cast<const char*>(int16s.data()), values * sizeof(std::int16_t)});
+      } else {
+        int32s.resize(values);
+        for (std::size_t i = 0; i < values; ++i) int32s[i] = static_cast<std::int32_t>(block[i]);
+        file.write({reinterpret_cast<const char*>(int32s.data()), values * sizeof(std::int32_t)});
       }
       if (progress) progress(next_first, config.samples);
     } catch (...) {

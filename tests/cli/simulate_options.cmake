@@ -272,3 +272,50 @@ sigmatau_cli_test(NAME cli_simulate_coarse_quantizer_flicker EXIT 0 WORKING_DIRE
        --gyro-quantizer "0.01 deg" --force -o coarse_b.csv)
 simo_check(cli_simulate_coarse_quantizer_flicker_sidecar "cli_simulate_coarse_quantizer_flicker"
   -DFILE=${SIMO_DIR}/coarse_b.csv.json "-DJSON=warnings/0=^the gyro quantizer step is 40x")
+
+# --- counts as a sensor's registers give them: --format i16 / i32 (kind counts only). The same
+# seed as csv reads back to the same adev table (only the channel name differs: c0 vs gx).
+set(simo_counts --model "N=0.15 deg/sqrt(h), GM=1 deg/h @ 10 s" --rate 50 --duration 2min
+    --kind counts --gyro-lsb "0.01 deg/s" --gyro-full-scale "250 deg/s" --seed 5 --force)
+sigmatau_cli_test(NAME cli_simulate_i16 EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate ${simo_counts} --format i16 -o counts.i16)
+simo_check(cli_simulate_i16_sidecar "cli_simulate_i16"
+  -DFILE=${SIMO_DIR}/counts.i16.json -DSIZE_FROM_JSON=${SIMO_DIR}/counts.i16
+  "-DJSON=file/bytes=^36000$@@file/read_with=^--binary i16 --channels 3 --rate 50$@@columns/2=^gz$")
+sigmatau_cli_test(NAME cli_simulate_i16_csv EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate ${simo_counts} -o counts.csv)
+file(WRITE ${SIMO_DIR}/same_but_name.sh [=[
+# $1 sigmatau; $2 and $3: '@'-separated argument lists; the csv outputs must agree after the
+# first field (the channel name).
+cmd=$1
+IFS=@ read -r -a a <<< "$2"
+IFS=@ read -r -a b <<< "$3"
+out_a=$("$cmd" "${a[@]}" | cut -d, -f2-) || exit 1
+out_b=$("$cmd" "${b[@]}" | cut -d, -f2-) || exit 1
+[ -n "$out_a" ] || { echo "no output"; exit 1; }
+[ "$out_a" = "$out_b" ] || { printf 'differ:\n%s\n---\n%s\n' "$out_a" "$out_b"; exit 1; }
+]=])
+add_test(NAME cli_simulate_i16_reads_back
+         COMMAND bash same_but_name.sh $<TARGET_FILE:sigmatau_cli>
+                 "adev@counts.i16@--binary@i16@--channels@3@--rate@50@--columns@0@--format@csv"
+                 "adev@counts.csv@--time-column@t@--columns@gx@--format@csv"
+         WORKING_DIRECTORY ${SIMO_DIR})
+set_tests_properties(cli_simulate_i16_reads_back PROPERTIES
+                     DEPENDS "cli_simulate_i16;cli_simulate_i16_csv")
+sigmatau_cli_test(NAME cli_simulate_i32 EXIT 0 WORKING_DIRECTORY ${SIMO_DIR} STDOUT "wrote"
+  ARGS simulate ${simo_counts} --format i32 -o counts.i32)
+simo_check(cli_simulate_i32_sidecar "cli_simulate_i32"
+  -DFILE=${SIMO_DIR}/counts.i32.json -DSIZE_FROM_JSON=${SIMO_DIR}/counts.i32
+  "-DJSON=file/bytes=^72000$@@file/read_with=^--binary i32 --channels 3 --rate 50$")
+sigmatau_cli_test(NAME cli_simulate_i16_needs_counts EXIT 2 NO_FILE ${SIMO_DIR}/bad.i16
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "format i16 writes integers: it needs --kind counts"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 50 --duration 2 --format i16 -o bad.i16)
+sigmatau_cli_test(NAME cli_simulate_i16_full_scale EXIT 2 NO_FILE ${SIMO_DIR}/bad.i16
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "gyro full scale is 200000 LSB, more than 32767; use i32"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 50 --duration 2 --kind counts
+       --gyro-lsb "0.01 deg/s" --gyro-full-scale "2000 deg/s" --format i16 -o bad.i16)
+sigmatau_cli_test(NAME cli_simulate_i16_temperature EXIT 2 NO_FILE ${SIMO_DIR}/bad.i16
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "cannot hold the temperature channel"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 50 --duration 2 --kind counts
+       --gyro-lsb "0.01 deg/s" --gyro-full-scale "250 deg/s" --temperature "20 degC @ 0 s"
+       --format i16 -o bad.i16)

@@ -276,9 +276,16 @@ class Simulator {
   std::unique_ptr<Impl> impl_;
 };
 
-enum class SampleFormat { csv, f32, f64 };
-/// "csv" | "f32" | "f64"; throws Error otherwise.
+/// Data file formats: text, little-endian floats, or (kind counts only) little-endian signed
+/// integers of 16 or 32 bits, as a sensor's registers give them.
+enum class SampleFormat { csv, f32, f64, i16, i32 };
+/// "csv" | "f32" | "f64" | "i16" | "i32"; throws Error otherwise.
 SampleFormat parse_sample_format(std::string_view text);
+std::string_view to_string(SampleFormat format);
+
+/// Throws Error when `config` cannot be written in `format`: i16 / i32 need kind counts, no
+/// temperature channel (it is in K) and, for i16, full_scale / lsb <= 32767 on every sensor.
+void check_sample_format(const SimulationConfig& config, SampleFormat format);
 
 /// The exact truth of a configuration as JSON text: every parameter in SI, the truth vectors,
 /// the flicker taps and band, and the theoretical AVAR (sampled_avar) per channel at the octave
@@ -290,7 +297,8 @@ std::string simulation_sidecar_json(const SimulationConfig& config,
                                     SampleFormat format = SampleFormat::csv);
 
 /// Streams a simulated log to `path` (csv with header "t,gx,gy,gz,ax,ay,az,temp" for the
-/// sensors and temperature present; f32/f64: little-endian rows of the channels, no time column;
+/// sensors and temperature present; f32/f64/i16/i32: little-endian rows of the channels, no time
+/// column (check_sample_format);
 /// values in config.gyro_unit / accel_unit, SI by default) and its sidecar to
 /// "<path>.json". Both files are written to a temporary name in their directory and renamed
 /// into place; an existing file is an Error unless `overwrite`. `progress(done, total)` is
