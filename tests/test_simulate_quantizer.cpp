@@ -7,7 +7,7 @@
 // tolerance is 4.5 standard errors of that mean, the standard error taken from the spread of the
 // 48 estimates themselves: a coarse quantizer's rounding error is strongly correlated from sample
 // to sample, so the usual power-law EDF would understate the scatter. With 48 realizations the
-// mean is close to normal; P(|Z| > 4.5) = 7e-6 per check, about 1e-4 for this file's 12 checks.
+// mean is close to normal; P(|Z| > 4.5) = 7e-6 per check, about 1e-4 for this file's 15 checks.
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "../../lib/src/simulate_quantizer.hpp"  // internal interface under test
 #include "sigmatau/simulate.hpp"
 #include "test_support.hpp"
 
@@ -140,6 +141,24 @@ TEST_CASE("a step 4x the noise with a drift of 0.3 step per sample and Gauss-Mar
   check_against_sidecar(t, step, Eigen::Vector3d::Constant(0.3 * step / kTau0));
 }
 
+TEST_CASE("a step 4x the white noise with flicker of about the same per-sample size") {
+  // The flicker FIR's per-sample standard deviation is B sqrt(sum h^2) ~ 2.3 B for 2^15 taps:
+  // 2.3e-4 rad per sample, twice the white 1e-4, so the window sums of the taps matter.
+  NoiseTerms t;
+  t.white = 1e-3;
+  t.bias_instability = 1e-2;
+  const double step = 4e-4;
+  check_against_sidecar(t, step, Eigen::Vector3d::Constant(0.3 * step / kTau0));
+}
+
+TEST_CASE("the flicker window variance: one tap is a sum of j unit normals; j = 1 is sum h^2") {
+  CHECK(detail::flicker_window_variance(1, 1) == rel(1, 1e-15));  // rounding only
+  CHECK(detail::flicker_window_variance(7, 1) == rel(7, 1e-15));
+  // Two taps h = (1, 1/2): j = 1 gives 1 + 1/4; j = 2 sums (h0), (h0 + h1), (h1): 1 + 9/4 + 1/4.
+  CHECK(detail::flicker_window_variance(1, 2) == rel(1.25, 1e-15));
+  CHECK(detail::flicker_window_variance(2, 2) == rel(3.5, 1e-15));
+}
+
 TEST_CASE("a step 3x the white noise with an additive quantization term") {
   NoiseTerms t;
   t.white = 1e-3;
@@ -180,7 +199,7 @@ TEST_CASE("the exact quantizer theory reaches its limits") {
 TEST_CASE("a coarse quantizer on a model without exact theory is warned about and recorded") {
   NoiseTerms t;
   t.white = 1e-3;
-  t.bias_instability = 1e-5;  // flicker: no exact quantizer theory
+  t.rate_random_walk = 1e-5;  // increments that grow along the log: no exact quantizer theory
   SUBCASE("step 40x the per-sample noise: a warning naming the axes, in the sidecar too") {
     const SimulationConfig c = quantized(t, 4e-3, 1);
     const auto warnings = simulation_warnings(c);
@@ -194,8 +213,9 @@ TEST_CASE("a coarse quantizer on a model without exact theory is warned about an
   SUBCASE("step 2x the per-sample noise: within 0.6 %, no warning") {
     CHECK(simulation_warnings(quantized(t, 2e-4, 1)).empty());
   }
-  SUBCASE("white noise only: the theory is exact, no warning") {
-    t.bias_instability.reset();
+  SUBCASE("white noise and flicker: the theory is exact, no warning") {
+    t.rate_random_walk.reset();
+    t.bias_instability = 1e-5;
     CHECK(simulation_warnings(quantized(t, 4e-3, 1)).empty());
   }
 }

@@ -302,7 +302,7 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
           total += *terms.bias_instability * *terms.bias_instability * flicker_unit[i];
         if (exact) {
           total += detail::real_quantizer_avar(quantizer_step, ms[i], sampling.tau0_s, terms,
-                                               drift[axis]);
+                                               drift[axis], sampling.flicker_taps);
         } else if (quantizer_step > 0) {  // additive equivalent Q = step / sqrt(12): 3 Q^2 / tau^2
           const double tau = static_cast<double>(ms[i]) * sampling.tau0_s;
           total += quantizer_step * quantizer_step / (4 * tau * tau);
@@ -318,7 +318,7 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
     std::string text;
     if (quantizer_exact)
       text = "the real quantizer's AVAR is exact for the channels whose noise is white, "
-             "additive Q and Gauss-Markov with a constant truth (rounding error of the "
+             "additive Q, Gauss-Markov and flicker with a constant truth (rounding error of the "
              "integrated output as a sawtooth, averaged over a uniform start phase; "
              "lib/src/simulate_quantizer.hpp); it equals 3 Q^2/tau^2, Q = step/sqrt(12), only "
              "when the noise moves the output over several steps per sample";

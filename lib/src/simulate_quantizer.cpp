@@ -56,8 +56,29 @@ double rounding_autocovariance(double step, double mu, double v, double w) {
 }  // namespace
 
 bool real_quantizer_exact(const SimulationConfig& c, const NoiseTerms& t) {
-  return !c.schedule && !c.truth_series && !c.temperature_profile && !t.bias_instability &&
-         !t.rate_random_walk && !t.rate_ramp && !t.sinusoid;
+  return !c.schedule && !c.truth_series && !c.temperature_profile && !t.rate_random_walk &&
+         !t.rate_ramp && !t.sinusoid;
+}
+
+double flicker_window_variance(std::int64_t j, std::int64_t taps) {
+  // S(i) = sum_{t<=i} h_t for 0 <= i < taps (S(taps - 1) beyond); c_p = S(min(taps - 1, j - 1 + p))
+  // - S(p - 1) with S(-1) = 0, for p from 1 - j to taps - 1.
+  std::vector<double> cumulative(static_cast<std::size_t>(taps));
+  double h = 1, sum = 0;
+  for (std::int64_t i = 0; i < taps; ++i) {
+    if (i > 0) h *= (static_cast<double>(i) - 0.5) / static_cast<double>(i);
+    sum += h;
+    cumulative[static_cast<std::size_t>(i)] = sum;
+  }
+  const auto s = [&](std::int64_t i) {
+    return i < 0 ? 0.0 : cumulative[static_cast<std::size_t>(std::min(i, taps - 1))];
+  };
+  double v = 0;
+  for (std::int64_t p = 1 - j; p < taps; ++p) {
+    const double c = s(std::min(taps - 1, j - 1 + p)) - s(p - 1);
+    v += c * c;
+  }
+  return v;
 }
 
 double per_sample_gaussian_variance(const NoiseTerms& t, double tau0_s) {
@@ -67,11 +88,17 @@ double per_sample_gaussian_variance(const NoiseTerms& t, double tau0_s) {
 }
 
 double real_quantizer_avar(double step, std::int64_t m, double tau0_s, const NoiseTerms& t,
-                           double drift) {
+                           double drift, std::int64_t flicker_taps) {
   const double w = t.quantization ? *t.quantization * std::sqrt(12.0) : 0.0;
   const auto r = [&](double j) {
     double v = t.white ? *t.white * *t.white * tau0_s * j : 0.0;
     if (t.gauss_markov) v += gauss_markov_increment_variance(*t.gauss_markov, j, tau0_s);
+    // Every harmonic is below e^-40 already: R = 0 whatever the flicker adds (it only adds
+    // variance), so its O(taps) sum is skipped.
+    if (2 * kPi * kPi * v / (step * step) > kSeriesCut) return 0.0;
+    if (t.bias_instability)
+      v += *t.bias_instability * *t.bias_instability * tau0_s * tau0_s *
+           flicker_window_variance(static_cast<std::int64_t>(j), flicker_taps);
     return rounding_autocovariance(step, drift * tau0_s * j, v, w);
   };
   const double md = static_cast<double>(m);
@@ -108,8 +135,8 @@ std::vector<std::string> simulation_warnings(const SimulationConfig& c) {
         std::string("the ") + sensor + " quantizer step is " +
         (std::isinf(worst) ? std::string("larger than the (zero) white noise")
                            : std::string(ratio_text) + "x the per-sample white noise") +
-        " on " + axes + ", whose model (flicker, rate random walk, ramp, sinusoid or a varying "
-        "truth or temperature) has no exact quantizer theory: the sidecar's quantization term "
+        " on " + axes + ", whose model (rate random walk, ramp, sinusoid or a varying truth or "
+        "temperature) has no exact quantizer theory: the sidecar's quantization term "
         "3 Q^2/tau^2 (Q = step/sqrt(12)) is then approximate at short tau, too high when the "
         "signal moves less than a step per sample (10x at a step of 40x the noise) and up to 2x "
         "too low with a drift near half a step per sample; it holds to 0.6 % when the step is "

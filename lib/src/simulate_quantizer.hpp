@@ -20,9 +20,12 @@
 // tests/test_simulate_quantizer.cpp.
 //
 // Exact when delta_m is Gaussian plus the additive term with constant mean: the noise is white,
-// additive quantization and Gauss-Markov only, and the truth, the temperature and the bias are
-// constant. Otherwise (flicker, rate random walk, ramp, sinusoid, a schedule, a truth series or a
-// temperature profile) the sidecar keeps the additive term and says it is approximate.
+// additive quantization, Gauss-Markov and flicker (the simulator's flicker is a stationary L-tap
+// FIR of white noise, so its sum over j samples has variance B^2 tau0^2 sum_p c_p^2 with c_p the
+// sums of j consecutive taps), and the truth, the temperature and the bias are constant.
+// Otherwise (rate random walk, whose increments grow along the log, ramp, sinusoid, a schedule,
+// a truth series or a temperature profile) the sidecar keeps the additive term and says it is
+// approximate.
 
 #include <cstdint>
 
@@ -45,9 +48,14 @@ bool real_quantizer_exact(const SimulationConfig& config, const NoiseTerms& term
 double per_sample_gaussian_variance(const NoiseTerms& terms, double tau0_s);
 
 /// AVAR_e(m) [rate unit^2] of the file comment for step D > 0, averaging factor m >= 1, the
-/// channel's terms (white, quantization, gauss_markov are used) and constant rate d
-/// [rad/s | m/s^2].
+/// channel's terms (white, quantization, gauss_markov and bias_instability with the flicker
+/// filter's `flicker_taps` are used) and constant rate d [rad/s | m/s^2].
 double real_quantizer_avar(double step, std::int64_t m, double tau0_s, const NoiseTerms& terms,
-                           double drift);
+                           double drift, std::int64_t flicker_taps);
+
+/// Variance of the sum of j consecutive samples of the unit flicker FIR (h_0 = 1, h_k =
+/// h_{k-1} (k - 1/2) / k, k < taps, unit white input): sum_p c_p^2 with c_p the sum of the taps
+/// h_i, max(0, p) <= i <= min(taps - 1, j - 1 + p), p > -j. O(taps + j).
+double flicker_window_variance(std::int64_t j, std::int64_t taps);
 
 }  // namespace sigmatau::detail

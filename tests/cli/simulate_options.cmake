@@ -264,14 +264,14 @@ sigmatau_cli_test(NAME cli_simulate_coarse_quantizer EXIT 0 WORKING_DIRECTORY ${
 simo_check(cli_simulate_coarse_quantizer_sidecar "cli_simulate_coarse_quantizer"
   -DFILE=${SIMO_DIR}/coarse.csv.json
   "-DJSON=theory/avar/gx/0=^7\\.9[0-9]*e-06$@@theory/quantizer=^the real quantizer's AVAR is exact")
-# With flicker there is no exact theory: a warning on stderr and in the sidecar.
-sigmatau_cli_test(NAME cli_simulate_coarse_quantizer_flicker EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
+# With a rate random walk there is no exact theory: a warning on stderr and in the sidecar.
+sigmatau_cli_test(NAME cli_simulate_coarse_quantizer_rrw EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
   STDOUT "wrote"
   STDERR "warning: the gyro quantizer step is 40x the per-sample white noise on gx, gy, gz"
-  ARGS simulate --model "N=0.15 deg/sqrt(h), B=1 deg/h" --rate 100 --duration 1min
-       --gyro-quantizer "0.01 deg" --force -o coarse_b.csv)
-simo_check(cli_simulate_coarse_quantizer_flicker_sidecar "cli_simulate_coarse_quantizer_flicker"
-  -DFILE=${SIMO_DIR}/coarse_b.csv.json "-DJSON=warnings/0=^the gyro quantizer step is 40x")
+  ARGS simulate --model "N=0.15 deg/sqrt(h), K=0.02 deg/h/sqrt(h)" --rate 100 --duration 1min
+       --gyro-quantizer "0.01 deg" --force -o coarse_k.csv)
+simo_check(cli_simulate_coarse_quantizer_rrw_sidecar "cli_simulate_coarse_quantizer_rrw"
+  -DFILE=${SIMO_DIR}/coarse_k.csv.json "-DJSON=warnings/0=^the gyro quantizer step is 40x")
 
 # --- counts as a sensor's registers give them: --format i16 / i32 (kind counts only). The same
 # seed as csv reads back to the same adev table (only the channel name differs: c0 vs gx).

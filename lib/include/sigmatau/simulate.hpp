@@ -218,8 +218,9 @@ struct SimulationConfig {
   /// an integer number of steps / tau0. Unlike the additive Q term this is a deterministic
   /// function of the signal; when the other noise spans several steps per sample, it adds
   /// 3 Q^2 / tau^2 to the AVAR with Q = step / sqrt(12). The sidecar's theory uses the exact
-  /// AVAR for a coarser step when the model allows (white, Q and Gauss-Markov noise, constant
-  /// truth; lib/src/simulate_quantizer.hpp), else 3 Q^2 / tau^2 and simulation_warnings().
+  /// AVAR for a coarser step when the model allows (white, Q, Gauss-Markov and flicker noise,
+  /// constant truth; lib/src/simulate_quantizer.hpp), else 3 Q^2 / tau^2 and
+  /// simulation_warnings().
   double gyro_quantizer_step = 0;
   double accel_quantizer_step = 0;
   OutputUnit gyro_unit;             ///< unit of the written gyro values (see OutputUnit)
@@ -238,7 +239,7 @@ void validate(const SimulationConfig& config);
 
 /// Lines for the user about a valid configuration whose sidecar theory is only approximate: a
 /// real quantizer step more than 2x the per-sample white noise on an axis whose model has no
-/// exact quantizer theory (flicker, rate random walk, ramp, sinusoid, schedule, truth series,
+/// exact quantizer theory (rate random walk, ramp, sinusoid, schedule, truth series,
 /// temperature profile; see lib/src/simulate_quantizer.hpp). The sidecar records them too.
 std::vector<std::string> simulation_warnings(const SimulationConfig& config);
 
