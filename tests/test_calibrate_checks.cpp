@@ -63,9 +63,11 @@ CalibrationResult temperature_result(const std::vector<double>& temps, bool acce
     r.temperature_max_k = std::max(r.temperature_max_k, t);
   }
   r.accel.matrix_estimated = true;
+  r.accel.dof = 20;  // a fit with degrees of freedom left (0 adds its own note)
   if (accel_model) r.accel.temperature = std::array<BiasTemperatureAxis, 3>{};
   TriadCalibration g;
   g.matrix_estimated = true;
+  g.dof = 30;
   r.gyro = g;
   return r;
 }
