@@ -258,6 +258,12 @@ TEST_CASE(
   // Without a temperature column: no notes, the bias labelled as such.
   CalibrationResult plain;
   plain.accel.matrix_estimated = true;
+  plain.accel.dof = 20;
   CHECK(calibration_notes(plain).empty());
+  // No degrees of freedom left: said.
+  plain.accel.dof = 0;
+  REQUIRE(calibration_notes(plain).size() == 1);
+  CHECK(contains(calibration_notes(plain)[0], "accelerometer: the fit has 0 degrees of freedom"));
+  plain.accel.dof = 20;
   CHECK(contains(calibration_table(plain), "bias b (no temperature column)"));
 }
