@@ -5,6 +5,7 @@
 
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
+#include "made_up_sheet.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -12,16 +13,7 @@ using namespace sigmatau;
 namespace {
 
 // A made-up sheet: every number below is chosen so that the verdicts are easy to check by hand.
-constexpr const char* kSheet = R"(schema: 1
-manufacturer: Test
-part: T-1
-grade: industrial
-sources:
-  ds:
-    document: test sheet
-    revision: "1"
-    kind: primary
-gyro:
+const std::string kSheet = test::made_up_sheet("T-1", R"(gyro:
   noise_density:
     typ: 0.01 °/s/√Hz
     source: ds
@@ -44,7 +36,7 @@ accel:
     max: ±3 %
     source: ds
     page: 1
-)";
+)");
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 

@@ -9,6 +9,7 @@
 
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/triad_frames.hpp"
+#include "made_up_sheet.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -19,16 +20,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 // A made-up sheet: a gyro misalignment printed axis-to-axis, an accelerometer cross-axis
 // sensitivity (per axis against the package), and a noise density for the convention test.
-constexpr const char* kSheet = R"(schema: 1
-manufacturer: Test
-part: T-2
-grade: industrial
-sources:
-  ds:
-    document: test sheet
-    revision: "1"
-    kind: primary
-gyro:
+const std::string kSheet = test::made_up_sheet("T-2", R"(gyro:
   noise_density:
     typ: 0.01 °/s/√Hz
     source: ds
@@ -43,7 +35,7 @@ accel:
     typ: ±2 %
     source: ds
     page: 1
-)";
+)");
 
 // Like STIM300: a misalignment with no condition (read as each axis against the package).
 constexpr const char* kPerAxisSheet = R"(schema: 1

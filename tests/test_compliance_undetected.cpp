@@ -13,6 +13,7 @@
 #include "sigmatau/plot.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/spec.hpp"
+#include "made_up_sheet.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -20,16 +21,7 @@ using namespace sigmatau;
 namespace {
 
 // A made-up sheet with round limits, so every ratio below can be checked by hand.
-constexpr const char* kSheet = R"(schema: 1
-manufacturer: Test
-part: T-2
-grade: industrial
-sources:
-  ds:
-    document: test sheet
-    revision: "1"
-    kind: primary
-gyro:
+const std::string kSheet = test::made_up_sheet("T-2", R"(gyro:
   angle_random_walk:
     max: 0.2 °/√h
     source: ds
@@ -42,7 +34,7 @@ gyro:
     max: 10 °/h/√h
     source: ds
     page: 1
-)";
+)");
 
 constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;  // deg/h -> rad/s
 constexpr double kBiasLimit = 3.0 * kDegPerHour;                   // printed floor [rad/s]
