@@ -218,11 +218,7 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
   const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : args.log.unit;
   // A sensor unit is checked even when no column of that sensor is found: a wrong --accel-unit
   // on a gyro-only log used to pass unnoticed.
-  auto expected_dimension = [&](bool gyro) {
-    Dimension expected = gyro ? dim::angular_rate : dim::acceleration;
-    if (kind != DataKind::rate) expected.time2 += 2;  // increments: rad, m/s
-    return expected;
-  };
+  const auto expected_dimension = [&](bool gyro) { return sensor_unit_dimension(gyro, kind); };
   if (!args.gyro_unit.empty()) parse_unit_as(args.gyro_unit, expected_dimension(true), "--gyro-unit");
   if (!args.accel_unit.empty()) {
     parse_unit_as(args.accel_unit, expected_dimension(false), "--accel-unit");

@@ -284,15 +284,13 @@ std::optional<SensorUnits> sensor_units(const FitArguments& args) {
     throw Error("--unit " + args.log.unit + " names one unit for every column; with --gyro-unit / "
                 "--accel-unit leave it out");
   }
-  const bool amounts = parse_data_kind(args.log.kind) != DataKind::rate;  // increments: rad, m/s
-  auto factor = [&](const std::string& text, Dimension expected, const char* option) {
-    if (text.empty()) return 1.0;
-    if (amounts) expected.time2 += 2;
-    return parse_unit_as(text, expected, option).factor;
+  const DataKind kind = parse_data_kind(args.log.kind);
+  auto factor = [&](const std::string& text, bool gyro, const char* option) {
+    return text.empty() ? 1.0 : parse_unit_as(text, sensor_unit_dimension(gyro, kind), option).factor;
   };
   SensorUnits units;
-  units.gyro_to_si = factor(args.gyro_unit, dim::angular_rate, "--gyro-unit");
-  units.accel_to_si = factor(args.accel_unit, dim::acceleration, "--accel-unit");
+  units.gyro_to_si = factor(args.gyro_unit, true, "--gyro-unit");
+  units.accel_to_si = factor(args.accel_unit, false, "--accel-unit");
   if (args.gyro_unit.empty() || args.accel_unit.empty()) {
     std::cerr << "sigmatau: no " << (args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit")
               << ": the " << (args.gyro_unit.empty() ? "gyro" : "accelerometer")

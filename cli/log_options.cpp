@@ -207,6 +207,12 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
   }
 }
 
+Dimension sensor_unit_dimension(bool gyro, DataKind kind) {
+  Dimension d = gyro ? dim::angular_rate : dim::acceleration;
+  if (kind != DataKind::rate) d.time2 += 2;  // increments and phase: rad, m/s
+  return d;
+}
+
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.kind = parse_data_kind(args.kind);
   loaded.unit = args.unit;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sigmatau/log_reader.hpp"
+#include "sigmatau/noise_model.hpp"
 #include "sigmatau/phase_series.hpp"
 #include "sigmatau/units.hpp"
 
@@ -68,6 +69,11 @@ LogOptions log_options_from(const LogArguments& args);
 /// lateness [s]; with --nonfinite skip, how many rows were dropped. Every path that reads a log
 /// (load_channels, adev's stream and out-of-core paths) calls it once.
 void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing);
+
+/// The dimension of a gyro's (`gyro`) or accelerometer's unit for data of `kind`: a rate
+/// (rad/s, m/s^2), or a per-sample amount for increments and phase (rad, m/s). For
+/// --gyro-unit / --accel-unit in `fit` and `analyze`.
+Dimension sensor_unit_dimension(bool gyro, DataKind kind);
 
 /// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded);
