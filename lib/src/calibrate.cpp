@@ -39,9 +39,6 @@ constexpr double kMaxMagnitudeError = 0.2;
 /// sensor's unmodelled effects (nonlinearity, g-sensitivity) give at most a few; motion during
 /// a "static" interval gives orders of magnitude more.
 constexpr double kMaxStaticMisfit = 1000;
-/// Temperature span of the intervals [K] below which no temperature dependence is fitted
-/// (the coefficient would be an extrapolation of noise).
-constexpr double kMinTemperatureSpan = 1.0;
 
 std::string direction_name(int axis, int sign) {
   return std::string(sign > 0 ? "+" : "-") + "xyz"[axis];
@@ -225,7 +222,7 @@ CalibrationResult detail::calibrate_samples(const CalibrationSamples& in,
       res.temperature_min_k = std::min(res.temperature_min_k, s.temperature_k);
       res.temperature_max_k = std::max(res.temperature_max_k, s.temperature_k);
     }
-    use_temperature = res.temperature_max_k - res.temperature_min_k >= kMinTemperatureSpan;
+    use_temperature = res.temperature_max_k - res.temperature_min_k >= detail::kMinTemperatureSpan;
   }
   // Accelerometer.
   detail::AccelFit accel;

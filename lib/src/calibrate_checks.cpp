@@ -15,6 +15,7 @@
 #include <numbers>
 #include <vector>
 
+#include "calibrate_internal.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/units.hpp"
 
@@ -30,10 +31,6 @@ constexpr double kLogLow = -8, kLogHigh = 8, kLogStep = 1e-3;
 /// Histogram of the temperature column [K]: bins of 0.1 K over [-1000 K, 2000 K] (a column in a
 /// wrong unit can be anything; out-of-range values fall into the end bins).
 constexpr double kTempLow = -1000, kTempHigh = 2000, kTempStep = 0.1;
-
-/// Temperature span below which calibrate() fits no temperature dependence [K] (calibrate.cpp,
-/// kMinTemperatureSpan): the coefficient would be an extrapolation of noise.
-constexpr double kMinTemperatureSpanK = 1.0;
 
 std::string prefixed(const std::string& path, const std::string& text) {
   return path.empty() ? text : path + ": " + text;
@@ -260,11 +257,11 @@ std::vector<std::string> calibration_notes(const CalibrationResult& r) {
                       "cannot test the model; rest the IMU in more orientations");
     if (!r.has_temperature || t.temperature) return;
     char reason[160];
-    if (span < kMinTemperatureSpanK)
+    if (span < detail::kMinTemperatureSpan)
       std::snprintf(reason, sizeof reason,
                     "the static intervals span only %.3g K of temperature (under %g K)", span,
-                    kMinTemperatureSpanK);
-    const std::string why = span < kMinTemperatureSpanK ? std::string(reason)
+                    detail::kMinTemperatureSpan);
+    const std::string why = span < detail::kMinTemperatureSpan ? std::string(reason)
                             : t.matrix_estimated && !t.note.empty()
                                 ? t.note
                                 : std::string("the static intervals do not determine it");
@@ -273,7 +270,7 @@ std::vector<std::string> calibration_notes(const CalibrationResult& r) {
                   "its bias holds at the log's mean temperature %.2f degC, not at T0 = %.2f degC",
                   mean_interval_temperature_k(r) - 273.15, r.reference_temperature_k - 273.15);
     std::string note = std::string(name) + ": no bias temperature model (" + why + "); " + where;
-    if (span >= kMinTemperatureSpanK) {
+    if (span >= detail::kMinTemperatureSpan) {
       std::snprintf(where, sizeof where,
                     "; its drift over the %.3g K the log spans stays in the residuals and can "
                     "pull the other parameters",

@@ -18,6 +18,10 @@ namespace sigmatau::detail {
 /// Channel order of a calibration row: ax, ay, az, gx, gy, gz, temperature.
 inline constexpr int kAccelChannel = 0, kGyroChannel = 3, kTemperatureChannel = 6;
 
+/// Temperature span of the static intervals [K] below which no temperature dependence is fitted
+/// (the coefficient would be an extrapolation of noise); the notes (calibrate_checks.cpp) say so.
+inline constexpr double kMinTemperatureSpan = 1.0;
+
 /// Consecutive rows of a calibration log: value(c, r) is channel c of row first + r, as stored
 /// (rates or increments in SI, temperature in K).
 struct SampleRows {
