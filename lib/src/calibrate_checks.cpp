@@ -22,15 +22,28 @@
 namespace sigmatau {
 namespace {
 
-/// Histogram of log10 of the magnitude [m/s^2]: bins of 1e-3 over [1e-8, 1e8]; smaller values
-/// (a zero row) fall into the first bin, larger into the last.
 const double kDegPerRad = 180 / std::numbers::pi;
 
+/// Histogram of log10 of the magnitude [m/s^2]: bins of 1e-3 over [1e-8, 1e8]; smaller values
+/// (a zero row) fall into the first bin, larger into the last.
 constexpr double kLogLow = -8, kLogHigh = 8, kLogStep = 1e-3;
 
 /// Histogram of the temperature column [K]: bins of 0.1 K over [-1000 K, 2000 K] (a column in a
 /// wrong unit can be anything; out-of-range values fall into the end bins).
 constexpr double kTempLow = -1000, kTempHigh = 2000, kTempStep = 0.1;
+
+/// Index of the histogram bin that holds the lower median (rank (rows + 1) / 2, 1-based) of the
+/// `rows` values counted in `count`.
+std::size_t lower_median_bin(const std::vector<std::int64_t>& count, std::int64_t rows) {
+  const std::int64_t half = (rows + 1) / 2;
+  std::int64_t seen = 0;
+  std::size_t bin = 0;
+  for (; bin < count.size(); ++bin) {
+    seen += count[bin];
+    if (seen >= half) break;
+  }
+  return bin;
+}
 
 std::string prefixed(const std::string& path, const std::string& text) {
   return path.empty() ? text : path + ": " + text;
@@ -54,13 +67,7 @@ double median_accel_magnitude(const CalibrationLog& log, double rate_hz, bool in
       ++count[bin];
     }
   });
-  const std::int64_t half = (rows + 1) / 2;  // the lower median's rank (1-based)
-  std::int64_t seen = 0;
-  std::size_t bin = 0;
-  for (; bin < bins; ++bin) {
-    seen += count[bin];
-    if (seen >= half) break;
-  }
+  const std::size_t bin = lower_median_bin(count, rows);
   return std::pow(10.0, kLogLow + (static_cast<double>(bin) + 0.5) * kLogStep);
 }
 
@@ -191,13 +198,7 @@ double median_temperature_k(const CalibrationLog& log) {
       ++count[static_cast<std::size_t>(std::clamp(x, 0.0, static_cast<double>(bins - 1)))];
     }
   });
-  const std::int64_t half = (rows + 1) / 2;
-  std::int64_t seen = 0;
-  std::size_t bin = 0;
-  for (; bin < bins; ++bin) {
-    seen += count[bin];
-    if (seen >= half) break;
-  }
+  const std::size_t bin = lower_median_bin(count, rows);
   return kTempLow + (static_cast<double>(bin) + 0.5) * kTempStep;
 }
 
