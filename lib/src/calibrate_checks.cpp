@@ -144,8 +144,7 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
         const Eigen::Vector3d step =
             (Eigen::Vector3d(row[3], row[4], row[5]) * to_rate - bias) * dt;  // [rad]
         travelled += step.norm();
-        if (step.norm() > 0)
-          rot = rot * Eigen::AngleAxisd(step.norm(), step.normalized()).toRotationMatrix();
+        rot = rot * detail::exp_so3(step);
       }
     });
     ++tested;

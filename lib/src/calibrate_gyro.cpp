@@ -36,12 +36,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return m;
 }
 
-Eigen::Matrix3d exp_so3(const Eigen::Vector3d& v) {
-  const double a = v.norm();
-  if (a < 1e-300) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(a, v / a).toRotationMatrix();
-}
-
 struct Rotation {
   int from = 0;                       // interval k
   Eigen::Vector3d earth = Eigen::Vector3d::Zero();  // reading_k - bias_k (before G^-1) [rad/s]
@@ -69,6 +63,12 @@ void directions(const std::vector<StaticInterval>& iv, const AccelFit& accel, co
 }
 
 }  // namespace
+
+Eigen::Matrix3d exp_so3(const Eigen::Vector3d& v) {
+  const double a = v.norm();
+  if (a < 1e-300) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(a, v / a).toRotationMatrix();
+}
 
 void rotation_steps(const CalibrationSamples& in, const StaticInterval& a, const StaticInterval& b,
                     const Eigen::Vector3d& ba, const Eigen::Vector3d& bb,

@@ -218,6 +218,9 @@ GyroMatrixFit fit_gyroscope_matrix(const CalibrationSamples& samples,
                                    const std::vector<Eigen::Vector3d>& interval_bias,
                                    std::int64_t step_memory_bytes);
 
+/// The rotation matrix of rotation vector v (angle |v| [rad] about v / |v|); I for |v| < 1e-300.
+Eigen::Matrix3d exp_so3(const Eigen::Vector3d& v);
+
 /// Calls step(dz) for each integration step of the gyroscope from the last sample of interval a
 /// to the first of interval b: rate samples by the trapezoid, or the increments in between, less
 /// the bias interpolated linearly in time from ba (at a's centre) to bb (at b's) [rad, raw axes].
