@@ -9,7 +9,6 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 namespace sigmatau {
 namespace {
@@ -19,17 +18,18 @@ namespace {
 /// both far below any calibration's standard error (~1e-6 and up).
 constexpr double kStep = 1e-6;
 
-/// Gradient of f at A with respect to A's entries, row-major.
-Eigen::Matrix<double, 9, 1> gradient(const std::function<double(const Eigen::Matrix3d&)>& f,
-                                     const Eigen::Matrix3d& a) {
-  Eigen::Matrix<double, 9, 1> g;
+/// Jacobian of f (N components) at A with respect to A's entries, row-major: column n is the
+/// gradient of component n. One pair of evaluations of f per entry serves every component.
+template <int N, class F>
+Eigen::Matrix<double, 9, N> jacobian(const F& f, const Eigen::Matrix3d& a) {
+  Eigen::Matrix<double, 9, N> jac;
   for (int k = 0; k < 9; ++k) {
     Eigen::Matrix3d plus = a, minus = a;
     plus(k / 3, k % 3) += kStep;
     minus(k / 3, k % 3) -= kStep;
-    g[k] = (f(plus) - f(minus)) / (2 * kStep);
+    jac.row(k) = ((f(plus) - f(minus)) / (2 * kStep)).transpose();
   }
-  return g;
+  return jac;
 }
 
 double propagated_se(const Eigen::Matrix<double, 9, 1>& j, const Eigen::Matrix<double, 9, 9>& s) {
@@ -59,18 +59,22 @@ Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& from, const Eigen::Matrix
 }  // namespace
 
 AngleEstimate non_orthogonality(const TriadMatrix& triad, int i, int j) {
-  const auto f = [i, j](const Eigen::Matrix3d& a) { return delta(a, i, j); };
-  return {f(triad.a), propagated_se(gradient(f, triad.a), triad.covariance)};
+  const auto f = [i, j](const Eigen::Matrix3d& a) {
+    return Eigen::Matrix<double, 1, 1>::Constant(delta(a, i, j));
+  };
+  return {delta(triad.a, i, j), propagated_se(jacobian<1>(f, triad.a), triad.covariance)};
 }
 
 std::array<AngleEstimate, 3> relative_rotation(const TriadMatrix& from, const TriadMatrix& to) {
   std::array<AngleEstimate, 3> out;
   const Eigen::Vector3d phi = rotation_vector(from.a, to.a);
+  const Eigen::Matrix<double, 9, 3> by_from = jacobian<3>(
+      [&](const Eigen::Matrix3d& a) { return rotation_vector(a, to.a); }, from.a);
+  const Eigen::Matrix<double, 9, 3> by_to = jacobian<3>(
+      [&](const Eigen::Matrix3d& a) { return rotation_vector(from.a, a); }, to.a);
   for (int k = 0; k < 3; ++k) {
-    const auto by_from = [&](const Eigen::Matrix3d& a) { return rotation_vector(a, to.a)[k]; };
-    const auto by_to = [&](const Eigen::Matrix3d& a) { return rotation_vector(from.a, a)[k]; };
-    const double se_from = propagated_se(gradient(by_from, from.a), from.covariance);
-    const double se_to = propagated_se(gradient(by_to, to.a), to.covariance);
+    const double se_from = propagated_se(by_from.col(k), from.covariance);
+    const double se_to = propagated_se(by_to.col(k), to.covariance);
     out[static_cast<std::size_t>(k)] = {phi[k], std::hypot(se_from, se_to)};
   }
   return out;
