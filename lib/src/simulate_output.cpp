@@ -101,17 +101,19 @@ void check_sample_format(const SimulationConfig& c, SampleFormat format) {
   if (c.temperature_profile)
     throw Error("format " + name + " cannot hold the temperature channel (K, not counts); use "
                 "f32, f64 or csv with a temperature profile");
-  const double limit = format == SampleFormat::i16 ? 32767 : 2147483647;
+  const long long limit = format == SampleFormat::i16 ? std::numeric_limits<std::int16_t>::max()
+                                                     : std::numeric_limits<std::int32_t>::max();
   for (const auto& [present, counts, sensor] :
        {std::tuple{c.gyro.has_value(), c.gyro_counts, "gyro"},
-        std::tuple{c.accel.has_value(), c.accel_counts, "accel"}})
-    if (present && !(std::floor(counts.full_scale / counts.lsb) <= limit))
+        std::tuple{c.accel.has_value(), c.accel_counts, "accel"}}) {
+    if (!present) continue;
+    const double full_scale_lsb = std::floor(counts.full_scale / counts.lsb);
+    if (!(full_scale_lsb <= static_cast<double>(limit)))
       throw Error(std::string("format ") + name + ": the " + sensor + " full scale is " +
-                  std::to_string(static_cast<long long>(
-                      std::min(std::floor(counts.full_scale / counts.lsb), 9.0e18))) +
-                  " LSB, more than " +
-                  (format == SampleFormat::i16 ? "32767" : "2147483647") + "; use " +
+                  std::to_string(static_cast<long long>(std::min(full_scale_lsb, 9.0e18))) +
+                  " LSB, more than " + std::to_string(limit) + "; use " +
                   (format == SampleFormat::i16 ? "i32" : "f64") + " or a larger LSB");
+  }
 }
 
 std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat format) {
