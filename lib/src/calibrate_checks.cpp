@@ -45,6 +45,12 @@ std::size_t lower_median_bin(const std::vector<std::int64_t>& count, std::int64_
   return bin;
 }
 
+/// What a temperature column below (`low`) or above the IMU range probably is.
+const char* temperature_unit_advice(bool low) {
+  return low ? ": is the column in degC (--temp-unit degC)?"
+             : ": is the column in K (--temp-unit K) or in raw counts?";
+}
+
 std::string prefixed(const std::string& path, const std::string& text) {
   return path.empty() ? text : path + ": " + text;
 }
@@ -211,8 +217,7 @@ void check_temperature_unit(double median_k, const std::string& unit_given,
                 "%.4g K (%.4g degC), %s any IMU's range (%g K to %g K)%s",
                 unit_given.c_str(), unit_given.c_str(), median_k, median_k - 273.15,
                 low ? "below" : "above", kMinImuTemperatureK, kMaxImuTemperatureK,
-                low ? ": is the column in degC (--temp-unit degC)?"
-                    : ": is the column in K (--temp-unit K) or in raw counts?");
+                temperature_unit_advice(low));
   throw Error(prefixed(path, text));
 }
 
@@ -230,8 +235,7 @@ void check_temperature_unit(const CalibrationResult& r, const std::string& unit_
                 unit_given.c_str(), unit_given.c_str(), r.temperature_min_k, r.temperature_max_k,
                 r.temperature_min_k - 273.15, r.temperature_max_k - 273.15, low ? "below" : "above",
                 kMinImuTemperatureK, kMaxImuTemperatureK,
-                low ? ": is the column in degC (--temp-unit degC)?"
-                    : ": is the column in K (--temp-unit K) or in raw counts?");
+                temperature_unit_advice(low));
   throw Error(prefixed(path, text));
 }
 
