@@ -32,6 +32,23 @@ json matrix_json(const Eigen::MatrixXd& m) {
 
 json ci_json(const CalibratedValue& v) { return {v.ci_low, v.ci_high}; }
 
+/// How the Earth rate entered the gyroscope's bias: fitted with it as the Earth rate of the first
+/// static interval, carried into the others by the attitudes from the integrated rotations
+/// ("heading"), or its unknown part taken as independent noise per interval ("noise").
+void earth_rate_json(const TriadCalibration& gyro, json& j) {
+  if (!gyro.earth_rate) {
+    j["earth_rate_model"] = "noise";
+    return;
+  }
+  const Eigen::Vector3d& w = *gyro.earth_rate;
+  j["earth_rate_model"] = "heading";
+  j["earth_rate_first_interval"] = {w[0], w[1], w[2]};
+  j["earth_rate_first_interval_se"] = {std::sqrt(gyro.earth_rate_covariance(0, 0)),
+                                       std::sqrt(gyro.earth_rate_covariance(1, 1)),
+                                       std::sqrt(gyro.earth_rate_covariance(2, 2))};
+  j["earth_rate_norm"] = w.norm();
+}
+
 json triad_json(const TriadCalibration& t, const char* unit, double confidence) {
   json j;
   j["unit"] = unit;
@@ -48,19 +65,6 @@ json triad_json(const TriadCalibration& t, const char* unit, double confidence) 
   j["bias_ci"] = bias_ci;
   j["bias_se"] = bias_se;
   j["bias_norm"] = std::hypot(t.bias[0].value, t.bias[1].value, t.bias[2].value);
-  if (t.earth_rate) {
-    // The gyro bias was fitted with the Earth rate of the first static interval, carried into the
-    // others by the attitudes from the integrated rotations ("heading"); its unknown part was
-    // otherwise independent noise per interval ("noise").
-    j["earth_rate_model"] = "heading";
-    j["earth_rate_first_interval"] = {(*t.earth_rate)[0], (*t.earth_rate)[1], (*t.earth_rate)[2]};
-    j["earth_rate_first_interval_se"] = {std::sqrt(t.earth_rate_covariance(0, 0)),
-                                         std::sqrt(t.earth_rate_covariance(1, 1)),
-                                         std::sqrt(t.earth_rate_covariance(2, 2))};
-    j["earth_rate_norm"] = t.earth_rate->norm();
-  } else if (std::string(unit) == "rad/s") {
-    j["earth_rate_model"] = "noise";
-  }
   if (t.matrix_estimated) {
     j["matrix"] = matrix_json(t.matrix);
     j["matrix_se"] = matrix_json(t.matrix_se);
@@ -151,6 +155,7 @@ std::string calibration_json(const CalibrationResult& r) {
   bias_at(r.accel, doc["accelerometer"]);
   if (r.gyro) {
     doc["gyroscope"] = triad_json(*r.gyro, "rad/s", r.confidence);
+    earth_rate_json(*r.gyro, doc["gyroscope"]);
     bias_at(*r.gyro, doc["gyroscope"]);
     doc["gyroscope"]["convention"] =
         "all 9 terms of A, in the accelerometer frame (see accelerometer.convention)";
