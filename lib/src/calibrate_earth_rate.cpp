@@ -90,11 +90,10 @@ GyroBiasFit heading_fit(const std::vector<StaticInterval>& iv, const std::vector
   f.heading = true;
   f.degree = degree;
   f.chi2 = (y - a * p).squaredNorm();
-  f.dof = static_cast<int>(3 * n - np);
-  f.scale = covariance_scale(f.chi2, f.dof);
+  const double scale = covariance_scale(f.chi2, static_cast<int>(3 * n - np));
   for (std::size_t ax = 0; ax < 3; ++ax) f.c[ax] = p.segment(off[ax], degree[ax] + 1);
-  f.covariance = f.scale * cov.topLeftCorner(nb, nb);
-  const Eigen::MatrixXd hcov = f.scale * cov.bottomRightCorner(ne, ne);
+  f.covariance = scale * cov.topLeftCorner(nb, nb);
+  const Eigen::MatrixXd hcov = scale * cov.bottomRightCorner(ne, ne);
   f.earth = basis * p.tail(ne);
   if (lat) f.earth += -kEarthRate * std::sin(*lat) * down[0];
   f.earth_cov = basis * hcov * basis.transpose();
@@ -149,7 +148,6 @@ GyroBiasFit noise_fit(const std::vector<StaticInterval>& iv, const std::vector<E
     }
     best.covariance *= covariance_scale(best.chi2, n - degree - 1);
     m.chi2 += best.chi2;
-    m.dof += n - degree - 1;
     m.c[a] = best.c;
     m.degree[a] = degree;
     cov[a] = best.covariance;

@@ -253,8 +253,6 @@ struct GyroBiasFit {
   Eigen::Vector3d earth = Eigen::Vector3d::Zero();      ///< w_0 [rad/s] (heading)
   Eigen::Matrix3d earth_cov = Eigen::Matrix3d::Zero();  ///< its covariance [(rad/s)^2]
   double chi2 = 0;
-  int dof = 0;
-  double scale = 1;  ///< covariance_scale applied
   /// The bias at temperature offset dt = T - T0 [rad/s].
   Eigen::Vector3d at(double dt) const;
 };
