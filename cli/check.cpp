@@ -15,6 +15,7 @@
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
 #include "sigmatau/units.hpp"
+#include "text_columns.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -79,20 +80,6 @@ std::string limit_cell(const ComplianceItem& item) {
                          : in_unit(item.limit_si, item.limit_unit, false) + " (" +
                                item.limit_text + " " + item.limit_factor_text + ")";
   return cell + (item.limit_is_typical ? " (typ)" : "");
-}
-
-/// Displayed width of UTF-8 text: its code points (every byte but continuation bytes 10xxxxxx).
-std::size_t width(const std::string& text) {
-  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
-    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-  }));
-}
-
-/// `text` padded with spaces to `columns` displayed characters (left-aligned, or right-aligned).
-std::string pad(const std::string& text, std::size_t columns, bool right = false) {
-  const std::size_t w = width(text);
-  const std::string fill(w < columns ? columns - w : 0, ' ');
-  return right ? fill + text : text + fill;
 }
 
 std::string label(const ComplianceItem& item) {

@@ -8,6 +8,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/resources.hpp"
 #include "sigmatau/spec.hpp"
+#include "text_columns.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -49,26 +50,23 @@ std::string white_brief(const SensorSheet* s) {
   return brief(s, SpecField::noise_density);
 }
 
-/// `text` padded with spaces to `width` columns (UTF-8 aware: one column per code point).
-std::string pad(const std::string& text, std::size_t width) {
-  std::size_t columns = 0;
-  for (unsigned char c : text) columns += (c & 0xC0) != 0x80;
-  return text + std::string(columns < width ? width - columns : 1, ' ');
-}
+/// `text` in a column `width` wide with at least one space after it (an overlong cell still
+/// stays apart from the next).
+std::string cell(const std::string& text, std::size_t width) { return pad(text, width - 1) + " "; }
 
 void run_list(const SpecsArguments& args) {
   const auto dir = specs_dir(args);
   const auto files = list_data_sheets(dir);
   std::cout << "data sheets in " << dir.string() << " (white noise: ARW/VRW if printed, else "
             << "noise density; nominal value, typ unless marked)\n";
-  std::cout << pad("name", 16) << pad("grade", 11) << pad("gyro white", 20)
-            << pad("gyro bias stab.", 17) << pad("accel white", 19) << "accel bias stab.\n";
+  std::cout << cell("name", 16) << cell("grade", 11) << cell("gyro white", 20)
+            << cell("gyro bias stab.", 17) << cell("accel white", 19) << "accel bias stab.\n";
   for (const auto& file : files) {
     const DataSheet sheet = load_data_sheet(file);
     const SensorSheet* g = sheet.sensor(Sensor::gyro);
     const SensorSheet* a = sheet.sensor(Sensor::accel);
-    std::cout << pad(sheet.name, 16) << pad(sheet.grade, 11) << pad(white_brief(g), 20)
-              << pad(brief(g, SpecField::bias_instability), 17) << pad(white_brief(a), 19)
+    std::cout << cell(sheet.name, 16) << cell(sheet.grade, 11) << cell(white_brief(g), 20)
+              << cell(brief(g, SpecField::bias_instability), 17) << cell(white_brief(a), 19)
               << brief(a, SpecField::bias_instability) << "\n";
   }
   std::cout << files.size() << " data sheets; `sigmatau specs show NAME` prints one in full\n";

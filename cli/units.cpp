@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sigmatau/error.hpp"
+#include "text_columns.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -33,16 +34,6 @@ std::string format_value(double v, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
   return buffer;
-}
-
-/// Pads to `width` characters counting UTF-8 code points, not bytes.
-std::string pad(std::string_view text, std::size_t width) {
-  std::size_t chars = 0;
-  for (const char c : text)
-    if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++chars;
-  std::string out(text);
-  if (chars < width) out.append(width - chars, ' ');
-  return out;
 }
 
 void print_table() {
