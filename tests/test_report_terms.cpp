@@ -58,3 +58,26 @@ TEST_CASE("the summary says B is the coefficient and the sheet's bias stability 
   CHECK(files.files.at("report.html").find("data sheets print its ADEV floor 0.664 B as the bias "
                                            "stability") != std::string::npos);
 }
+
+TEST_CASE("a measured term the sheet does not print shows its value; an accelerometer's K is named after acceleration") {
+  // The demo's accelerometer z keeps a K the STIM300 sheet has no line for: its row was empty,
+  // and named "accel rate random walk z".
+  nlohmann::json results = nlohmann::json::parse(results_with(false));
+  results["channels"] = {{{"name", "az"}, {"sensor", "accel"}}};
+  nlohmann::json item = {{"sensor", "accel"},     {"quantity", "rate_random_walk"},
+                         {"axis", "z"},            {"verdict", "not specified"},
+                         {"detected", true},       {"value", 1.5e-5},
+                         {"ci_low", 1.2e-5},       {"ci_high", 3.7e-5}};
+  results["compliance"] = nlohmann::json::object();
+  results["compliance"]["spec"] = {{"manufacturer", "Test"}, {"part", "T-1"}};
+  results["compliance"]["verdict"] = "pass";
+  results["compliance"]["items"] = nlohmann::json::array({item});
+  ReportOptions options;
+  options.plots = false;
+  const ReportFiles files = build_report(results.dump(), options);
+  const std::string& md = files.files.at("summary.md");
+  CHECK(md.find("| accel acceleration random walk z | not specified | 1.5e-05 [1.2e-05, 3.7e-05] "
+                "m/s^3/sqrt(Hz) measured; the sheet prints no limit |") != std::string::npos);
+  CHECK(md.find("rate random walk") == std::string::npos);
+  CHECK(files.files.at("report.html").find("accel acceleration random walk z") != std::string::npos);
+}

@@ -305,8 +305,36 @@ std::string limit_cell(const json& item) {
 }
 
 /// The "measured / limit" cell of the compliance tables.
+/// "gyro white noise x": the row's name. An accelerometer's K and R are named after
+/// acceleration (IEEE 1293), as in `fit`, not "rate random walk".
+std::string item_label(const json& item) {
+  const std::string sensor = item.value("sensor", "");
+  std::string quantity = spaced(item.value("quantity", ""));
+  if (sensor == "accel" && quantity.rfind("rate ", 0) == 0) quantity = "acceleration " + quantity.substr(5);
+  return sensor + " " + quantity + " " + item.value("axis", "");
+}
+
+/// A term the fit measured but the sheet does not print: its value and interval in the usual
+/// data-sheet unit (the row used to be empty).
+std::string unspecified_measurement(const json& item) {
+  const DisplayUnits u = display_units(item.value("sensor", ""));
+  const std::string quantity = item.value("quantity", "");
+  const std::string unit = quantity == "white_noise"        ? u.white
+                           : quantity == "bias_instability" ? u.bias
+                           : quantity == "rate_random_walk" ? u.walk
+                                                            : std::string();
+  if (!item.contains("value") || !item["value"].is_number()) return "";
+  std::string text = fmt(in_unit(item["value"].get<double>(), unit));
+  if (item.contains("ci_low") && item.contains("ci_high") && item["ci_low"].is_number() &&
+      item["ci_high"].is_number()) {
+    text += " [" + fmt(in_unit(item["ci_low"].get<double>(), unit)) + ", " +
+            fmt(in_unit(item["ci_high"].get<double>(), unit)) + "]";
+  }
+  return text + (unit.empty() ? " (SI)" : " " + unit) + " measured; the sheet prints no limit";
+}
+
 std::string margin_cell(const json& item) {
-  if (item.value("verdict", "") == "not specified") return "";
+  if (item.value("verdict", "") == "not specified") return unspecified_measurement(item);
   if (undetected(item)) return "not detected (upper bound only)";
   return item.contains("margin") ? fmt(item_number(item, "margin"), 3) : "";
 }
@@ -318,7 +346,7 @@ CompliancePlot compliance_plot(const json& results) {
     const std::string verdict = item.value("verdict", "");
     if (verdict == "not specified") continue;
     ComplianceRow row;
-    row.label = item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", "");
+    row.label = item_label(item);
     row.verdict = verdict;
     if (undetected(item)) {
       // Only a bound: one point at bound / limit, said so in the label.
@@ -464,8 +492,7 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
     for (const auto& item : results["compliance"]["items"]) {
-      md << "| " << item.value("sensor", "") << " " << spaced(item.value("quantity", "")) << " "
-         << item.value("axis", "") << " | " << item.value("verdict", "") << " | "
+      md << "| " << item_label(item) << " | " << item.value("verdict", "") << " | "
          << margin_cell(item) << " | "
          << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << " | "
          << limit_cell(item) << " |\n";
@@ -542,7 +569,7 @@ std::string report_html(const json& results, const PlotSet& plots,
     for (const auto& item : results["compliance"]["items"]) {
       const std::string verdict = item.value("verdict", "");
       h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
-        << html_escape(item.value("sensor", "") + " " + spaced(item.value("quantity", "")) + " " + item.value("axis", ""))
+        << html_escape(item_label(item))
         << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
         << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << "</td><td>"
         << html_escape(limit_cell(item)) << (item.value("limit_is_typical", false) ? " (typ)" : "")
