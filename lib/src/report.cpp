@@ -334,7 +334,7 @@ std::string unspecified_measurement(const json& item) {
 }
 
 std::string margin_cell(const json& item) {
-  if (item.value("verdict", "") == "not specified") return unspecified_measurement(item);
+  if (item.value("verdict", "") == "not specified") return "";
   if (undetected(item)) return "not detected (upper bound only)";
   return item.contains("margin") ? fmt(item_number(item, "margin"), 3) : "";
 }
@@ -493,7 +493,8 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
     md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
     for (const auto& item : results["compliance"]["items"]) {
       md << "| " << item_label(item) << " | " << item.value("verdict", "") << " | "
-         << margin_cell(item) << " | "
+         << (item.value("verdict", "") == "not specified" ? unspecified_measurement(item) : margin_cell(item))
+         << " | "
          << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << " | "
          << limit_cell(item) << " |\n";
     }
@@ -573,7 +574,10 @@ std::string report_html(const json& results, const PlotSet& plots,
         << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
         << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << "</td><td>"
         << html_escape(limit_cell(item)) << (item.value("limit_is_typical", false) ? " (typ)" : "")
-        << "</td><td>" << html_escape(item.value("rule", "")) << "</td></tr>\n";
+        // A row the sheet has no limit for: what was measured goes where the rule would be.
+        << "</td><td>"
+        << html_escape(verdict == "not specified" ? unspecified_measurement(item) : item.value("rule", ""))
+        << "</td></tr>\n";
     }
     h << "</table>\n";
     if (any_inconclusive(results["compliance"])) {
