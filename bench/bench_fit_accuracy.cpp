@@ -7,7 +7,7 @@
 // holds about a parameter once the model is known, so the cost of selecting it shows. A plain
 // program (not Google Benchmark): it measures error and speed together. Usage:
 //   bench_fit_accuracy OUT_PREFIX [SEEDS=200] [PROFILES=mems_gyro,tactical_gyro,consumer_accel,
-//                      weak_flicker_gyro,ramp_gyro] [TAUS=octave] [FIRST_SEED=1]
+//                      weak_flicker_gyro,flicker_accel,ramp_gyro] [TAUS=octave] [FIRST_SEED=1]
 // (TAUS: a --taus spec: octave, many:P, ...; FIRST_SEED: seeds FIRST_SEED .. FIRST_SEED+SEEDS-1,
 // so that exploration runs can use seeds the reported table does not) writes OUT_PREFIX.md,
 // OUT_PREFIX.csv and OUT_PREFIX.channels.csv (every channel's estimates, one row per method and
@@ -57,6 +57,11 @@ const std::vector<Profile>& profiles() {
       // for a large-tau term picks N,K or N,B,K instead of N,B.
       {"weak_flicker_gyro", "STIM300-like gyro (weak flicker, no K), 100 Hz, 3 h", Sensor::gyro,
        100, 3, "N=0.15 deg/sqrt(h), B=0.5 deg/h"},
+      // The demo's accelerometer (specs/safran_stim300.yaml typical VRW 0.06 m/s/sqrt(h) and
+      // bias instability 0.05 mg, read as the ADEV floor): a flicker floor from ~4 s to the
+      // end of the log and no K, where the scatter of the last taus can pass for a K.
+      {"flicker_accel", "STIM300-like accelerometer (flicker floor from 4 s, no K), 100 Hz, 3 h",
+       Sensor::accel, 100, 3, "N=102 ug/sqrt(Hz), B=75 ug"},
       // A rate ramp (a warm-up or thermal drift) that crosses the flicker floor near 250 s, as
       // the MEMS gyro's K does near 200 s: selection must still find R although it gives a
       // ramp a low prior (fit_select.hpp, kRampPriorPenalty).
