@@ -440,6 +440,14 @@ TEST_CASE("averaging factors for each tau specification") {
                        doctest::Contains("too long for oadev"), Error);
   CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("0.015"), Statistic::oadev, N, 0.01),
                        doctest::Contains("not a multiple"), Error);
+  // Stamped logs measure tau0 from their own clock: 1 ppm (a crystal) and 300 ppm (a host clock)
+  // off 100 Hz still give the m = 1, 100 points; 2000 ppm is beyond the 1e-3 tolerance (m 99.8).
+  for (const double ppm : {1.0, -1.0, 300.0, -300.0}) {
+    CHECK(averaging_factors(parse_tau_spec("0.01,1"), Statistic::oadev, N, 0.01 * (1 + ppm * 1e-6)) ==
+          V{1, 100});
+  }
+  CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("1"), Statistic::oadev, N, 0.01 * 1.002),
+                       doctest::Contains("not a multiple of the sample interval 0.01002 s"), Error);
   CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("0.001"), Statistic::oadev, N, 0.01),
                        doctest::Contains("shorter than the sample interval"), Error);
   CHECK(averaging_factors(parse_tau_spec("octave"), Statistic::oadev, 2, 1.0).empty());

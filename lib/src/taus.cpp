@@ -15,10 +15,13 @@
 namespace sigmatau {
 namespace {
 
-/// An explicit tau must be this close (relative) to a multiple of tau0: looser than the
-/// rounding of a decimal tau such as 0.01 s divided by tau0 (~1e-16), tighter than any real
-/// mismatch of sample rate and requested tau.
-constexpr double kTauMultipleTolerance = 1e-9;
+/// An explicit tau is taken as the nearest multiple m tau0 when it is this close (relative) to
+/// one. Logs with time stamps measure tau0 from their own clock, which is a few ppm (a crystal)
+/// to a few hundred ppm (a host clock) off the nominal rate: `--taus 1` must still mean the
+/// m = 100 point of a 100 Hz log whose stamps say 100.0001 Hz. 1e-3 admits a clock 1000 ppm off
+/// and still refuses a tau between two multiples (0.015 s at 0.01 s is 0.5 of m away, 1/3 of
+/// its ratio). The tau reported is m tau0, the one computed.
+constexpr double kTauMultipleTolerance = 1e-3;
 /// Upper limit for "many:P": a denser grid than 1000 per decade has duplicates from m = 1 to
 /// beyond 400, so it only costs time.
 constexpr int kMaxPerDecade = 1000;
@@ -150,13 +153,18 @@ std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic stati
       for (const double seconds : spec.seconds) {
         const double ratio = seconds / tau0_s;
         if (!(ratio >= 0.5 && std::isfinite(ratio))) {
-          throw Error("tau " + std::to_string(seconds) + " s is shorter than the sample interval " +
-                      std::to_string(tau0_s) + " s");
+          char text[200];
+          std::snprintf(text, sizeof text, "tau %.10g s is shorter than the sample interval %.10g s",
+                        seconds, tau0_s);
+          throw Error(text);
         }
         const double rounded = std::round(ratio);
         if (!(std::abs(ratio - rounded) <= kTauMultipleTolerance * ratio)) {
-          throw Error("tau " + std::to_string(seconds) + " s is not a multiple of the sample interval " +
-                      std::to_string(tau0_s) + " s");
+          char text[200];
+          std::snprintf(text, sizeof text,
+                        "tau %.10g s is not a multiple of the sample interval %.10g s (%.6g of it)",
+                        seconds, tau0_s, ratio);
+          throw Error(text);
         }
         if (rounded > static_cast<double>(max_m)) {
           // An explicitly asked tau that the record cannot give is an error, not a silent gap.
