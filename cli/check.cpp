@@ -79,7 +79,7 @@ std::string limit_cell(const ComplianceItem& item) {
                          ? item.limit_text
                          : in_unit(item.limit_si, item.limit_unit, false) + " (" +
                                item.limit_text + " " + item.limit_factor_text + ")";
-  return cell + (item.limit_is_typical ? " (typ)" : "");
+  return cell + (item.limit_is_typical ? " (typ)" : " (max)");
 }
 
 std::string label(const ComplianceItem& item) {
@@ -87,11 +87,8 @@ std::string label(const ComplianceItem& item) {
          std::string(to_string(item.measured.quantity)) + " " + item.measured.axis;
 }
 
-std::string ratio(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f", value);
-  return buffer;
-}
+/// measured / limit as shown: never "1" for a ratio that is not 1 (format_ratio).
+std::string ratio(double value) { return format_ratio(value); }
 
 /// One table row; `cells` are parameter, verdict, measured, upper bound, limit, margin, upper.
 std::string row(const std::vector<std::string>& cells) {
@@ -111,7 +108,8 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
       << result << "; pass: upper bound within the limit, marginal: estimate within but "
       << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
-      << "beyond (a longer log is needed); |x|: compared by magnitude\n";
+      << "beyond (a longer log is needed); |x|: compared by magnitude\n"
+      << "# " << kGateConfidenceNote << "\n";
   out << row({"parameter", "verdict", "measured", "upper bound", "limit", "margin", "upper"});
   std::vector<const ComplianceItem*> informational;
   for (const auto& item : items) {
@@ -149,6 +147,8 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   for (const auto& item : items) inconclusive += item.verdict == Verdict::inconclusive;
   const std::string counted = std::to_string(checked) + " of " +
                               std::to_string(checked + unspecified) + " items checked";
+  // Beside the verdict (RESULT stays the last line): a typ limit is not a guarantee.
+  if (any_typical_limit(items)) out << "# note: " << kTypicalLimitNote << "\n";
   if (any_failed(items)) {
     out << "RESULT: FAIL (" << counted << ")\n";
   } else if (inconclusive > 0) {

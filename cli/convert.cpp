@@ -93,6 +93,9 @@ void run_convert(const ConvertArguments& args) {
 
   std::vector<TriadNoise> triads;
   std::string source;
+  // Sensors the sheet describes without any noise term: said in the explanation, as a sensor
+  // with some terms says "white noise: not given" (the BMI088's accelerometer used to vanish).
+  std::string silent_sensors;
   if (!args.fit.empty()) {
     const std::string text = read_text_file(args.fit);
     triads = triads_from_fit_json(text, args.fit);
@@ -105,7 +108,13 @@ void run_convert(const ConvertArguments& args) {
       if (!sheet.sensor(s)) continue;
       TriadNoise t = triad_from_data_sheet(sheet, s, options.convention);
       const NoiseTerms& a = t.axes[0];
-      if (a.white || a.bias_instability || a.rate_random_walk) triads.push_back(std::move(t));
+      if (a.white || a.bias_instability || a.rate_random_walk) {
+        triads.push_back(std::move(t));
+      } else {
+        silent_sensors += std::string(to_string(s)) +
+                          ": not given (the sheet describes it but prints no noise density, "
+                          "ARW/VRW, bias stability or rate random walk for it)\n";
+      }
     }
     if (triads.empty()) {
       throw Error(file.string() + " prints no noise density, ARW/VRW, bias stability or rate "
@@ -159,7 +168,8 @@ void run_convert(const ConvertArguments& args) {
     source = "command-line terms";
   }
 
-  const DiscreteNoise noise = convert_noise(triads, options, source);
+  DiscreteNoise noise = convert_noise(triads, options, source);
+  noise.explain += silent_sensors;
   if (!format) {
     std::cout << noise.explain;
     return;

@@ -2,7 +2,8 @@
 # lines (fitted model and terms, data-sheet lines) and read-off markers.
 # Variables set by sigmatau (gnuplot -e): datafile, linefile, markerfile, outfile,
 # term ('svg'|'pngcairo'|'pdfcairo'), title_text, ylabel_text, nchannels, colors, nlines,
-# linecolors, nmarkers, markercolors (colour lists: space-separated '#rrggbb' words).
+# linecolors, nmarkers, markercolors (colour lists: space-separated '#rrggbb' words), and
+# optionally ymin, ymax.
 # Files: one block per curve / line / marker set, blocks separated by two blank lines; the first
 # line of a block is its quoted key title ("" for none). datafile columns: tau dev ci_low
 # ci_high; linefile and markerfile columns: tau value.
@@ -25,6 +26,8 @@ set format x '10^{%L}'
 set format y '10^{%L}'
 set xlabel 'averaging time τ [s]'
 set ylabel ylabel_text noenhanced
+# ymin, ymax (optional): whole decades around every point, so at least two ticks are labelled
+if (exists('ymin')) set yrange [ymin:ymax]
 set grid xtics ytics mxtics mytics lc rgb '#dddddd' lw 1
 set key outside right top box opaque samplen 2 font ',13' noenhanced
 set style fill transparent solid 0.18 noborder

@@ -1,7 +1,7 @@
 # sigmatau PSD plot: one-sided PSD per channel (log-binned), with dashed levels (measured noise
 # density, data-sheet noise density) as horizontal lines.
 # Variables set by sigmatau (gnuplot -e): datafile, linefile, outfile, term, title_text,
-# ylabel_text, nchannels, colors, nlines, linecolors.
+# ylabel_text, nchannels, colors, nlines, linecolors, and optionally ymin, ymax.
 # Files: blocks separated by two blank lines, first line the quoted key title;
 # datafile columns: frequency psd; linefile columns: frequency level.
 
@@ -21,6 +21,8 @@ set format x '10^{%L}'
 set format y '10^{%L}'
 set xlabel 'frequency [Hz]'
 set ylabel ylabel_text noenhanced
+# ymin, ymax (optional): whole decades around every point, so at least two ticks are labelled
+if (exists('ymin')) set yrange [ymin:ymax]
 set grid xtics ytics mxtics mytics lc rgb '#dddddd' lw 1
 set key outside right top box opaque samplen 2 font ',13' noenhanced
 plot for [i=0:nchannels-1] datafile index i using 1:2 with lines lw 2 \

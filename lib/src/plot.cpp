@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -155,6 +156,12 @@ void run_gnuplot(const std::string& script_name, const std::string& assignments,
   }
 }
 
+/// "; ymin=...; ymax=..." for a y range, "" for {0, 0} (the template then autoscales).
+std::string y_range_assignments(const std::pair<double, double>& range) {
+  if (!(range.first > 0 && range.second > range.first)) return "";
+  return "; ymin=" + gnuplot_number(range.first) + "; ymax=" + gnuplot_number(range.second);
+}
+
 void move_into_place(const std::filesystem::path& rendered, const std::filesystem::path& output,
                      bool overwrite) {
   std::ifstream in(rendered, std::ios::binary);
@@ -210,7 +217,7 @@ void render_deviation_plot(const DeviationPlot& plot, const std::filesystem::pat
       "; nchannels=" + std::to_string(plot.curves.size()) + "; colors=" + gnuplot_string(colors_of(plot.curves)) +
       "; nlines=" + std::to_string(plot.lines.size()) + "; linecolors=" + gnuplot_string(colors_of(plot.lines)) +
       "; nmarkers=" + std::to_string(plot.markers.size()) +
-      "; markercolors=" + gnuplot_string(colors_of(plot.markers));
+      "; markercolors=" + gnuplot_string(colors_of(plot.markers)) + y_range_assignments(decade_y_range(plot));
   run_gnuplot("adev.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }
@@ -232,7 +239,8 @@ void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path&
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
       "; ylabel_text=" + gnuplot_string(plot.y_label) +
       "; nchannels=" + std::to_string(plot.curves.size()) + "; colors=" + gnuplot_string(colors_of(plot.curves)) +
-      "; nlines=" + std::to_string(plot.lines.size()) + "; linecolors=" + gnuplot_string(colors_of(plot.lines));
+      "; nlines=" + std::to_string(plot.lines.size()) + "; linecolors=" + gnuplot_string(colors_of(plot.lines)) +
+      y_range_assignments(decade_y_range(plot));
   run_gnuplot("psd.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }
@@ -247,7 +255,62 @@ std::pair<double, double> compliance_x_range(const CompliancePlot& plot) {
       high = std::max(high, v);
     }
   }
-  return {low / kMargin, high * kMargin};
+  low /= kMargin;
+  high *= kMargin;
+  // The labels nearest 1 (compliance.gp) are 0.5 and 2: show one of them, with a little room so
+  // that its label is not on the frame.
+  constexpr double kBelow = 0.5, kAbove = 2, kRoom = 1.1;
+  if (low > kBelow && high < kAbove) {
+    if (low / kBelow <= kAbove / high) {
+      low = kBelow / kRoom;
+    } else {
+      high = kAbove * kRoom;
+    }
+  }
+  return {low, high};
+}
+
+namespace {
+
+/// Extends [low, high] by the positive, finite values of `values`.
+void extend(double& low, double& high, const std::vector<double>& values) {
+  for (const double v : values) {
+    if (!(v > 0) || !std::isfinite(v)) continue;
+    low = std::min(low, v);
+    high = std::max(high, v);
+  }
+}
+
+/// [low, high] widened outward to powers of ten, at least one decade apart; {0, 0} when empty.
+std::pair<double, double> to_decades(double low, double high) {
+  if (!(low <= high) || !std::isfinite(low) || !std::isfinite(high)) return {0, 0};
+  double lo = std::floor(std::log10(low));
+  double hi = std::ceil(std::log10(high));
+  if (hi <= lo) hi = lo + 1;  // a value at an exact power of ten, or a constant curve
+  return {std::pow(10.0, lo), std::pow(10.0, hi)};
+}
+
+}  // namespace
+
+std::pair<double, double> decade_y_range(const DeviationPlot& plot) {
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const auto& c : plot.curves) {
+    extend(low, high, c.y);
+    extend(low, high, c.low);
+    extend(low, high, c.high);
+  }
+  for (const auto& c : plot.lines) extend(low, high, c.y);
+  for (const auto& c : plot.markers) extend(low, high, c.y);
+  return to_decades(low, high);
+}
+
+std::pair<double, double> decade_y_range(const SpectrumPlot& plot) {
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const auto& c : plot.curves) extend(low, high, c.y);
+  for (const auto& c : plot.lines) extend(low, high, c.y);
+  return to_decades(low, high);
 }
 
 void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::path& output,

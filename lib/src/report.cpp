@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 
+#include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/units.hpp"
@@ -117,6 +118,23 @@ struct PlotSet {
   std::vector<std::string> warnings;
 };
 
+/// The key of the sheet's white-noise line on an ADEV plot, named after the field the line came
+/// from (the compliance item's spec_field: ARW / VRW are preferred to a noise density, as in
+/// triad_from_data_sheet), "data sheet white noise" when no item says.
+std::string white_line_name(const json& results, const std::string& sensor) {
+  if (results.contains("compliance") && results["compliance"].is_object() &&
+      results["compliance"].contains("items")) {
+    for (const auto& item : results["compliance"]["items"]) {
+      if (item.value("sensor", "") != sensor || item.value("quantity", "") != "white_noise") continue;
+      const std::string field = item.value("spec_field", "");
+      if (field == "angle_random_walk") return "data sheet ARW";
+      if (field == "velocity_random_walk") return "data sheet VRW";
+      if (field == "noise_density") return "data sheet noise density";
+    }
+  }
+  return "data sheet white noise";
+}
+
 DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
   const DisplayUnits u = display_units(sensor);
   DeviationPlot plot;
@@ -176,7 +194,7 @@ DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
     if (!plot.curves.empty()) taus = {plot.curves.front().x.front(), plot.curves.front().x.back()};
     if (lines.contains("white") && taus.size() == 2) {
       PlotCurve l;
-      l.name = "data sheet noise density";
+      l.name = white_line_name(results, sensor);
       l.color = "#000000";
       const double n = lines["white"].get<double>();
       l.x = taus;
@@ -269,6 +287,24 @@ DeviationPlot dynamic_plot(const json& channel) {
   return plot;
 }
 
+/// True when some checked compliance item was judged against a typical value (no max printed).
+bool typical_limit_used(const json& compliance) {
+  for (const auto& item : compliance["items"]) {
+    if (item.value("verdict", "") != "not specified" && item.value("limit_is_typical", false)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The verdict rule, said under each compliance table, with how strong a pass is.
+std::string verdict_rule(const json& results) {
+  return "pass: the upper bound of the " + fmt(100 * results.value("confidence", 0.683), 3) +
+         " % interval is within the limit; marginal: the estimate is within the limit but its "
+         "bound is not; fail: the estimate exceeds the limit. " +
+         std::string(kGateConfidenceNote);
+}
+
 /// A number of a compliance item, NaN when absent or null (JSON has no NaN).
 double item_number(const json& item, const char* key) {
   if (!item.contains(key) || !item[key].is_number()) return std::numeric_limits<double>::quiet_NaN();
@@ -300,8 +336,11 @@ bool any_inconclusive(const json& compliance) {
 /// The limit as printed, with how it was scaled for the comparison when it was ("/√2" for a
 /// one-sided density, "×2" for a per-axis misalignment against an axis pair).
 std::string limit_cell(const json& item) {
+  const std::string text = item.value("limit_text", "");
+  if (text.empty()) return "";  // not specified: no limit
   const std::string scaled = item.value("limit_factor_text", "");
-  return item.value("limit_text", "") + (scaled.empty() ? "" : " " + scaled);
+  return text + (scaled.empty() ? "" : " " + scaled) +
+         (item.value("limit_is_typical", false) ? " (typ)" : " (max)");
 }
 
 /// The "measured / limit" cell of the compliance tables.
@@ -336,7 +375,7 @@ std::string unspecified_measurement(const json& item) {
 std::string margin_cell(const json& item) {
   if (item.value("verdict", "") == "not specified") return "";
   if (undetected(item)) return "not detected (upper bound only)";
-  return item.contains("margin") ? fmt(item_number(item, "margin"), 3) : "";
+  return item.contains("margin") ? format_ratio(item_number(item, "margin")) : "";
 }
 
 CompliancePlot compliance_plot(const json& results) {
@@ -471,7 +510,9 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "- data sheet: " << results["compliance"]["spec"].value("manufacturer", "") << " "
        << results["compliance"]["spec"].value("part", "") << ": **"
-       << results["compliance"].value("verdict", "") << "**\n";
+       << results["compliance"].value("verdict", "") << "**"
+       << (typical_limit_used(results["compliance"]) ? std::string(" (") + kTypicalLimitNote + ")" : "")
+       << "\n";
   }
   const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
   md << "\n| channel | N | B | K |" << (show_q ? " Q |" : "") << (show_r ? " R |" : "")
@@ -495,9 +536,10 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
       md << "| " << item_label(item) << " | " << item.value("verdict", "") << " | "
          << (item.value("verdict", "") == "not specified" ? unspecified_measurement(item) : margin_cell(item))
          << " | "
-         << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << " | "
+         << (item.contains("margin_upper") ? format_ratio(item_number(item, "margin_upper")) : "") << " | "
          << limit_cell(item) << " |\n";
     }
+    md << "\n" << verdict_rule(results) << "\n";
     if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
   if (!warnings.empty()) {
@@ -537,7 +579,11 @@ std::string report_html(const json& results, const PlotSet& plots,
                        : verdict == "fail"         ? "fail"
                        : verdict == "inconclusive" ? "inconclusive"
                                                    : "marginal")
-      << "\">" << html_escape(verdict) << "</span></p>\n";
+      << "\">" << html_escape(verdict) << "</span>"
+      << (typical_limit_used(results["compliance"])
+              ? " <span class=\"muted\">(" + html_escape(kTypicalLimitNote) + ")</span>"
+              : std::string())
+      << "</p>\n";
   }
   const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
   h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th>" << (show_q ? "<th>Q</th>" : "")
@@ -572,14 +618,14 @@ std::string report_html(const json& results, const PlotSet& plots,
       h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
         << html_escape(item_label(item))
         << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
-        << (item.contains("margin_upper") ? fmt(item_number(item, "margin_upper"), 3) : "") << "</td><td>"
-        << html_escape(limit_cell(item)) << (item.value("limit_is_typical", false) ? " (typ)" : "")
+        << (item.contains("margin_upper") ? format_ratio(item_number(item, "margin_upper")) : "") << "</td><td>"
+        << html_escape(limit_cell(item))
         // A row the sheet has no limit for: what was measured goes where the rule would be.
         << "</td><td>"
         << html_escape(verdict == "not specified" ? unspecified_measurement(item) : item.value("rule", ""))
         << "</td></tr>\n";
     }
-    h << "</table>\n";
+    h << "</table>\n<p class=\"muted\">" << html_escape(verdict_rule(results)) << "</p>\n";
     if (any_inconclusive(results["compliance"])) {
       h << "<p class=\"muted\">" << html_escape(kInconclusiveNote) << "</p>\n";
     }

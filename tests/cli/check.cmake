@@ -88,7 +88,7 @@ sigmatau_cli_test(NAME cli_check_columns_aligned EXIT 0
   ARGS check --spec adi_adis16465 ${check_data}/fit_pass.json)
 # analyze's summary shows the same: a one-sided density's limit with its /√2.
 sigmatau_cli_test(NAME cli_check_one_sided_analyze EXIT 0 WORKING_DIRECTORY ${check_dir}
-  STDOUT "\\| gyro white noise x \\| pass \\| [0-9.]+ \\| [0-9.]+ \\| 2\\.8 mdps/√Hz /√2 \\|"
+  STDOUT "\\| gyro white noise x \\| pass \\| [0-9.]+ \\| [0-9.]+ \\| 2\\.8 mdps/√Hz /√2 \\(typ\\) \\|"
   ARGS analyze n_only_5min.csv --time-column t --gyro-unit rad/s --spec tdk_icm42688p
        --density-convention one-sided -o analyze_one_sided --force)
 set_tests_properties(cli_check_one_sided_analyze PROPERTIES FIXTURES_REQUIRED check_n_only_log_5min)

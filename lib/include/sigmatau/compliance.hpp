@@ -129,6 +129,28 @@ int items_checked(const std::vector<ComplianceItem>& items);
 /// "nothing to check".
 std::string overall_verdict(const std::vector<ComplianceItem>& items);
 
+/// A ratio (measured / limit, bound / limit) for people: 3 significant digits, 4 within 1 % of
+/// 1, more when needed so that a ratio other than 1 never reads as "1"; trailing zeros kept
+/// ("1.000", "0.500"); at or above 100 as a whole number; "n/a" when not finite.
+/// Examples: 1.0013 -> "1.001", 0.5 -> "0.500", 0.99996 -> "0.99996".
+std::string format_ratio(double ratio);
+
+/// True when any checked item (verdict other than not_specified) was judged against a typical
+/// value because the sheet prints no max.
+bool any_typical_limit(const std::vector<ComplianceItem>& items);
+
+/// Said once beside the verdict when any limit is a typical value (any_typical_limit): a typ is
+/// the population's centre, not a bound.
+inline constexpr const char* kTypicalLimitNote =
+    "limits marked (typ) are typical values, not guaranteed maxima: a unit at its typical noise "
+    "exceeds them about half the time";
+
+/// Said where the verdict rule is explained: how strong a pass is at the default confidence.
+inline constexpr const char* kGateConfidenceNote =
+    "A pass at the default 68.3 % intervals is a one-sigma statement, and the upper bound of a "
+    "term not detected is conditional on its non-detection, so it falls below the truth more "
+    "often than the level says; for a production gate, fit or analyze with --ci 0.95.";
+
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
 /// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict", and when

@@ -54,7 +54,9 @@ struct CompliancePlot {
 
 /// The x range of the compliance chart: every positive ratio and its interval, and always the
 /// limit line at 1, with a margin of 1.5x on each side (log axis). Autoscaling put the axis
-/// start at 1 when every item failed, so the limit line sat on the frame.
+/// start at 1 when every item failed, so the limit line sat on the frame. When that holds no
+/// labelled tick but 1 (every ratio within 0.75-1.33: the labels are 1-2-5 steps), it is
+/// widened on the nearer side to show 0.5 or 2 as well.
 std::pair<double, double> compliance_x_range(const CompliancePlot& plot);
 
 /// PSD plot: log-log curves against frequency, with dashed lines (e.g. the noise density as a
@@ -65,6 +67,14 @@ struct SpectrumPlot {
   std::vector<PlotCurve> curves;
   std::vector<PlotCurve> lines;
 };
+
+/// The y range of a log-log plot (deviation or PSD): every positive, finite y of the curves,
+/// their bands, the lines and the markers, widened outward to whole decades and spanning at
+/// least one, so that at least two labelled ticks (10^k) show. A curve spanning less than a
+/// decade (a white-noise PSD) otherwise got one tick label, or several reading the same 10^k.
+/// {0, 0} when there is no such point (gnuplot then autoscales).
+std::pair<double, double> decade_y_range(const DeviationPlot& plot);
+std::pair<double, double> decade_y_range(const SpectrumPlot& plot);
 
 /// True when a `gnuplot` executable is on PATH.
 bool gnuplot_available();

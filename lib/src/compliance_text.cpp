@@ -1,0 +1,38 @@
+// Text shared by every place that shows compliance verdicts (check's table, analyze's
+// summary.md and report.html): ratios and the notes beside the verdict (see compliance.hpp).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "sigmatau/compliance.hpp"
+
+namespace sigmatau {
+
+std::string format_ratio(double ratio) {
+  if (!std::isfinite(ratio)) return "n/a";
+  char text[48];
+  if (std::abs(ratio) >= 100) {
+    std::snprintf(text, sizeof text, "%.0f", ratio);
+    return text;
+  }
+  // Three significant digits, four within 1 % of the limit; then more until a ratio that is not
+  // exactly 1 no longer reads as 1 (a fail by 0.004 % must not print "1.000").
+  int digits = std::abs(ratio - 1) < 0.01 ? 4 : 3;
+  for (;; ++digits) {
+    std::snprintf(text, sizeof text, "%#.*g", digits, ratio);
+    if (ratio == 1 || digits >= 17 || std::strtod(text, nullptr) != 1) break;
+  }
+  std::string out = text;
+  if (!out.empty() && out.back() == '.') out.pop_back();  // "%#g" keeps a bare point: "12."
+  return out;
+}
+
+bool any_typical_limit(const std::vector<ComplianceItem>& items) {
+  for (const auto& item : items) {
+    if (item.verdict != Verdict::not_specified && item.limit_is_typical) return true;
+  }
+  return false;
+}
+
+}  // namespace sigmatau
