@@ -99,7 +99,7 @@ TEST_CASE("a PSD spanning less than a decade gets a y range of whole decades") {
   CHECK(std::abs(high / 1.0 - 1) < kPowRounding);
 }
 
-TEST_CASE("the rendered PSD plot labels two decades") {
+TEST_CASE("the rendered PSD plot of a single decade labels its ends and its 2 and 5 steps") {
   if (!gnuplot_available()) {
     MESSAGE("gnuplot not found: rendered-plot check skipped");
     return;
@@ -113,8 +113,11 @@ TEST_CASE("the rendered PSD plot labels two decades") {
   render_spectrum_plot(psd, file, true);
   std::ifstream in(file);
   const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // Enhanced text writes 10^{-3} as "10" then a raised "-3": both exponents are labelled.
+  // Enhanced text writes 10^{-3} as "10" then a raised "-3": both ends are labelled, and the
+  // steps between them (psd.gp) so a value can be read off.
   CHECK(svg.find(">-3<") != std::string::npos);
   CHECK(svg.find(">-2<") != std::string::npos);
+  CHECK(svg.find(">2×10<") != std::string::npos);
+  CHECK(svg.find(">5×10<") != std::string::npos);
   std::filesystem::remove(file);
 }

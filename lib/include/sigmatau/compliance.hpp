@@ -147,9 +147,9 @@ inline constexpr const char* kTypicalLimitNote =
 
 /// Said where the verdict rule is explained: how strong a pass is at the default confidence.
 inline constexpr const char* kGateConfidenceNote =
-    "A pass at the default 68.3 % intervals is a one-sigma statement, and the upper bound of a "
-    "term not detected is conditional on its non-detection, so it falls below the truth more "
-    "often than the level says; for a production gate, fit or analyze with --ci 0.95.";
+    "At the default 68.3 % a pass is a one-sigma statement, and the bound of a term not "
+    "detected (conditional on its non-detection) falls below the truth more often than that; "
+    "for a gate, fit or analyze with --ci 0.95.";
 
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",

@@ -72,7 +72,8 @@ struct SpectrumPlot {
 /// their bands, the lines and the markers, widened outward to whole decades and spanning at
 /// least one, so that at least two labelled ticks (10^k) show. A curve spanning less than a
 /// decade (a white-noise PSD) otherwise got one tick label, or several reading the same 10^k.
-/// {0, 0} when there is no such point (gnuplot then autoscales).
+/// {0, 0} when there is no such point (gnuplot then autoscales). The templates (adev.gp,
+/// psd.gp) also label the 2 and 5 steps of a range of a single decade.
 std::pair<double, double> decade_y_range(const DeviationPlot& plot);
 std::pair<double, double> decade_y_range(const SpectrumPlot& plot);
 
