@@ -39,18 +39,42 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   return s;
 }
 
+/// "angle random walk" / "velocity random walk".
+std::string random_walk_name(Sensor sensor) {
+  return sensor == Sensor::gyro ? "angle random walk" : "velocity random walk";
+}
+
+/// "; its RMS noise 1.8 mg (typ) is a total over the output band, not a density" when the
+/// section prints one, else "". A printed RMS noise is a total over the output band: without
+/// the band's noise bandwidth it gives no density, so it is named, not used.
+std::string rms_remark(const SensorSheet& section) {
+  if (const SpecValue* rms = section.find(SpecField::rms_noise); rms && rms->nominal())
+    return "; its RMS noise " + rms->nominal()->text +
+           " is a total over the output band, not a density";
+  return {};
+}
+
 }  // namespace
+
+std::string sheet_noise_gap(const DataSheet& sheet, Sensor sensor, DensityConvention convention) {
+  const std::string what = sensor_name(sensor);
+  const SensorSheet* section = sheet.sensor(sensor);
+  if (!section) return "has no " + what + " section";
+  const NoiseTerms t = triad_from_data_sheet(sheet, sensor, convention).axes[0];
+  if (t.white || t.bias_instability || t.rate_random_walk) return {};
+  return "prints no " + what + " noise term (no " + random_walk_name(sensor) +
+         ", noise density, bias instability or rate random walk" + rms_remark(*section) + ")";
+}
 
 SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                                             DensityConvention convention) {
   const std::string what = sensor_name(sensor);
-  const std::string remedy = "give the " + what + " terms with " + model_option(sensor) + ", e.g. " +
-                             model_example(sensor) + " (it replaces the sheet's " + what +
-                             " terms), or leave " + what + " out of --sensors";
-  const SensorSheet* section = sheet.sensor(sensor);
-  if (!section)
-    throw Error(sheet_label(sheet) + " has no " + what + " section, so its " + what +
-                " would be simulated without noise; " + remedy);
+  if (const std::string gap = sheet_noise_gap(sheet, sensor, convention); !gap.empty())
+    throw Error(
+        sheet_label(sheet) + " " + gap + ", so " + (sheet.sensor(sensor) ? "the " : "its ") + what +
+        " would be simulated without noise; give the " + what + " terms with " +
+        model_option(sensor) + ", e.g. " + model_example(sensor) + " (it replaces the sheet's " +
+        what + " terms), or leave " + what + " out of --sensors");
   const TriadNoise triad = triad_from_data_sheet(sheet, sensor, convention);
   SheetNoise out;
   out.axes = triad.axes;
@@ -58,24 +82,11 @@ SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor senso
   out.has_white = t.white.has_value();
   if (t.white) out.read.push_back(triad.white_origin);
   append_parts(out.read, triad.bias_origin);
-
-  const std::string random_walk =
-      sensor == Sensor::gyro ? "angle random walk" : "velocity random walk";
-  // A printed RMS noise is a total over the output band: without the band's noise bandwidth it
-  // gives no density, so it is named, not used.
-  std::string rms_remark;
-  if (const SpecValue* rms = section->find(SpecField::rms_noise); rms && rms->nominal())
-    rms_remark = "; its RMS noise " + rms->nominal()->text +
-                 " is a total over the output band, not a density";
   if (!t.white)
-    out.left_out.push_back("white noise (no " + random_walk + " or noise density" + rms_remark +
-                           ")");
+    out.left_out.push_back("white noise (no " + random_walk_name(sensor) + " or noise density" +
+                           rms_remark(*sheet.sensor(sensor)) + ")");
   if (!t.bias_instability) out.left_out.push_back("bias instability");
   if (!t.rate_random_walk) out.left_out.push_back("rate random walk");
-  if (!t.white && !t.bias_instability && !t.rate_random_walk)
-    throw Error(sheet_label(sheet) + " prints no " + what + " noise term (no " + random_walk +
-                ", noise density, bias instability or rate random walk" + rms_remark + "), so the " +
-                what + " would be simulated without noise; " + remedy);
   return out;
 }
 

@@ -37,6 +37,14 @@ struct SheetNoise {
 SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                                             DensityConvention convention);
 
+/// What `sheet` lacks for `sensor` to be simulated with any noise, as a phrase that follows the
+/// sheet's name: "has no accel section", or "prints no accel noise term (no velocity random
+/// walk, noise density, bias instability or rate random walk)" (a printed RMS noise is named as
+/// giving no density). Empty when the sheet gives the sensor at least one noise term, i.e. when
+/// simulation_noise_from_data_sheet does not throw. For callers that leave such a sensor out
+/// (the demo) instead of refusing it.
+std::string sheet_noise_gap(const DataSheet& sheet, Sensor sensor, DensityConvention convention);
+
 /// One line for stderr when `noise` has no white noise: names the sheet, the sensor, every term
 /// left out and the option that supplies them; empty when white noise is given.
 std::string sheet_noise_warning(const DataSheet& sheet, Sensor sensor, const SheetNoise& noise);
