@@ -1,47 +1,20 @@
-// `sigmatau analyze` (the whole chain into one output directory) and `sigmatau demo` (the same on
-// a log simulated from a shipped data sheet).
+// `sigmatau analyze`: the whole chain on one log into one output directory (the chain's options
+// and output are shared with `demo`: analysis_chain.hpp).
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <ctime>
-#include <limits>
 #include <cstdlib>
-#include <functional>
 #include <filesystem>
 #include <iostream>
 
+#include "analysis_chain.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
-#include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
-#include "sigmatau/report.hpp"
-#include "sigmatau/resources.hpp"
-#include "sigmatau/simulate.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
 namespace {
-
-struct ChainArguments {
-  std::string statistics = "oadev";
-  std::string taus = "octave";
-  double ci = 0.683;
-  double fit_tau_min_s = 0;
-  double fit_tau_max_s = std::numeric_limits<double>::infinity();
-  std::string spec;
-  std::vector<double> rate_out;
-  std::string trim = "auto";
-  std::string plot_format = "svg";
-  std::string convention = "two-sided";
-  std::string bias_model = "rw";
-  std::string output = "sigmatau-report";
-  bool force = false;
-  unsigned threads = 0;
-  bool dynamic = false;
-  int dynamic_windows = 8;
-};
 
 struct AnalyzeArguments {
   LogArguments log;
@@ -59,136 +32,6 @@ struct AnalyzeArguments {
 /// Measured: 5.5 GiB peak for a 10 GB ROS 1 bag of 1.6e8 values (36 bytes per value, the noise
 /// fit's covariance included).
 constexpr std::int64_t kAnalyzeBytesPerValue = 40;
-
-struct DemoArguments {
-  ChainArguments chain;
-  std::string sheet = "safran_stim300";
-  double hours = 3.0;
-  double rate_hz = 100.0;
-  std::uint64_t seed = 1;
-  /// The simulated unit's noise terms as a fraction of the sheet's typical values: a unit a
-  /// little better than typical, so the demo shows margins rather than a coin toss at 1.0.
-  double scale = 0.8;
-};
-
-void add_chain_options(CLI::App& command, ChainArguments& args) {
-  command.add_option("--stat", args.statistics,
-                     "statistics, comma-separated (the first is plotted and fitted)")
-      ->capture_default_str();
-  command.add_option("--taus", args.taus, "octave | decade | many[:P] | all | seconds list")
-      ->capture_default_str();
-  command.add_option("--ci", args.ci, "confidence level of every interval")->capture_default_str();
-  command.add_option("--tau-min", args.fit_tau_min_s,
-                     "the noise-term fit uses only taus >= this [s] (a sensor that filters its "
-                     "output departs from the noise terms at the shortest taus)");
-  command.add_option("--tau-max", args.fit_tau_max_s, "the noise-term fit uses only taus <= this [s]");
-  command.add_option("--spec", args.spec, "data sheet to check against (file or name in specs/)");
-  command.add_option("--rate-out", args.rate_out,
-                     "filter rates [Hz] for the covariances and exports (default: the log's rate)");
-  command.add_option("--trim", args.trim,
-                     "warm-up: auto (detect and trim), none, or a duration in seconds")
-      ->capture_default_str();
-  command.add_option("--plot-format", args.plot_format, "svg | png | pdf (report.html always inlines SVG)")
-      ->capture_default_str();
-  command.add_option("--density-convention", args.convention,
-                     "how the data sheet's noise density is read: two-sided (N = ND) or one-sided")
-      ->capture_default_str();
-  command.add_option("--bias-model", args.bias_model, "filter bias model: rw | gm")->capture_default_str();
-  // "report/" names the directory "report": with the slash kept, the directory was created first
-  // and then could not be moved into place ("cannot rename: Invalid argument").
-  command.add_option("-o,--output", args.output, "output directory (written atomically)")
-      ->capture_default_str()
-      ->transform(
-          [](std::string path) {
-            while (path.size() > 1 && path.back() == '/') path.pop_back();
-            return path;
-          },
-          "");
-  command.add_flag("--force", args.force, "replace an existing output directory");
-  command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
-  command.add_flag("--dynamic", args.dynamic,
-                   "also the dynamic Allan deviation (OADEV over sliding windows) of each channel");
-  command.add_option("--dynamic-windows", args.dynamic_windows, "number of half-overlapping windows")
-      ->capture_default_str();
-}
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
-AnalysisOptions chain_options(const ChainArguments& args) {
-  AnalysisOptions options;
-  options.statistics.clear();
-  for (const auto& s : split_list(args.statistics, "--stat")) options.statistics.push_back(parse_statistic(s));
-  options.taus = parse_tau_spec(args.taus);
-  if (!(args.ci > 0 && args.ci < 1)) throw Error("--ci must be between 0 and 1, got " + std::to_string(args.ci));
-  options.confidence = args.ci;
-  check_tau_range(args.fit_tau_min_s, args.fit_tau_max_s);  // before the log is read
-  options.fit_tau_min_s = args.fit_tau_min_s;
-  options.fit_tau_max_s = args.fit_tau_max_s;
-  if (args.trim == "auto") {
-    options.trim = TrimMode::automatic;
-  } else if (args.trim == "none") {
-    options.trim = TrimMode::none;
-  } else {
-    options.trim = TrimMode::fixed;
-    options.trim_s = parse_quantity_as(args.trim.find_first_not_of("0123456789.eE+-") == std::string::npos
-                                           ? args.trim + " s" : args.trim,
-                                       dim::time, "--trim");
-  }
-  for (double r : args.rate_out) {
-    if (!(r > 0)) throw Error("--rate-out must be > 0 Hz, got " + std::to_string(r));
-  }
-  options.filter_rates_hz = args.rate_out;
-  if (!args.spec.empty()) options.spec = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
-  options.convention = parse_density_convention(args.convention);
-  options.bias_model = parse_bias_model(args.bias_model);
-  options.threads = args.threads;
-  if (args.dynamic) {
-    if (args.dynamic_windows < 2) throw Error("--dynamic-windows must be >= 2");
-    options.dynamic_windows = args.dynamic_windows;
-  }
-  options.created_utc = utc_now();
-  return options;
-}
-
-/// Refuses an existing output directory without --force, and one that could not be created
-/// (an unwritable parent), before any reading.
-void check_output(const ChainArguments& args) {
-  std::error_code ec;
-  if (std::filesystem::exists(args.output, ec) && !args.force) {
-    throw Error(args.output + " exists; use --force to replace it");
-  }
-  check_can_create_in(args.output);
-}
-
-/// Runs the chain (`analyze(options)`: in memory or bounded) and writes the output directory.
-void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze,
-            const ChainArguments& args, const std::map<std::string, std::string>& extra,
-            std::int64_t flicker_taps = 0) {
-  const PlotFormat plot_format = parse_plot_format(args.plot_format);
-  check_output(args);
-  AnalysisOptions options = chain_options(args);
-  options.flicker_taps = flicker_taps;
-  const auto start = std::chrono::steady_clock::now();
-  AnalysisOutput analysis = analyze(options);
-  ReportOptions report_options;
-  report_options.plot_format = plot_format;
-  ReportFiles files = build_report(analysis.results_json, report_options);
-  files.files["results.json"] = analysis.results_json;
-  for (const auto& [name, text] : analysis.filter_files) files.files[name] = text;
-  for (const auto& [name, text] : extra) files.files[name] = text;
-  write_output_directory(args.output, files, args.force);
-  for (const auto& w : analysis.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
-  for (const auto& w : files.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << files.files.at("summary.md") << "\nwrote " << args.output << "/ (" << files.files.size()
-            << " files: report.html, results.json, summary.md, plots, filter files) in "
-            << seconds << " s\n";
-}
 
 /// The channels analyze works on, chosen from the log's channel names: explicit --gyro / --accel
 /// columns (only those), else every column with its role recognised by name; each with the
@@ -349,67 +192,6 @@ void run_analyze(const AnalyzeArguments& args) {
          args.chain, {});
 }
 
-void run_demo(const DemoArguments& args) {
-  const DataSheet sheet = load_data_sheet(find_data_sheet(args.sheet, resource_dir("specs")));
-  if (!(args.hours > 0) || !(args.rate_hz > 0) || !(args.scale > 0)) {
-    throw Error("--hours, --rate and --scale must be > 0");
-  }
-  check_output(args.chain);  // before the simulation
-  SimulationConfig config;
-  config.rate_hz = args.rate_hz;
-  config.samples = static_cast<std::int64_t>(std::llround(args.hours * 3600 * args.rate_hz));
-  config.seed = args.seed;
-  StaticPose pose;
-  pose.latitude_rad = 45.0 * 3.14159265358979323846 / 180.0;
-  config.truth = static_truth(pose);
-  config.threads = args.chain.threads == 0 ? 2 : args.chain.threads;
-  for (Sensor sensor : {Sensor::gyro, Sensor::accel}) {
-    if (!sheet.sensor(sensor)) continue;
-    const TriadNoise triad = triad_from_data_sheet(sheet, sensor, parse_density_convention(args.chain.convention));
-    ErrorModel model;
-    model.noise = triad.axes;
-    for (auto& axis : model.noise) {
-      for (auto* term : {&axis.quantization, &axis.white, &axis.bias_instability,
-                         &axis.rate_random_walk, &axis.rate_ramp}) {
-        if (*term) **term *= args.scale;
-      }
-    }
-    (sensor == Sensor::gyro ? config.gyro : config.accel) = model;
-  }
-  Simulator simulator(config);
-  AnalysisInput input;
-  char description[256];
-  std::snprintf(description, sizeof description,
-                "demo: %s %s simulated from specs/%s.yaml with %g x its typical noise terms "
-                "(%g h at %g Hz, seed %llu)",
-                sheet.manufacturer.c_str(), sheet.part.c_str(), sheet.name.c_str(), args.scale,
-                args.hours, args.rate_hz, static_cast<unsigned long long>(args.seed));
-  input.path = description;
-  input.rate_hz = args.rate_hz;
-  const auto names = simulator.channel_names();
-  for (const auto& name : names) {
-    AnalysisChannel channel;
-    channel.name = name;
-    channel.role = classify_channel(name);
-    channel.values.reserve(static_cast<std::size_t>(config.samples));
-    input.channels.push_back(std::move(channel));
-    input.input_units.push_back("");
-  }
-  std::vector<double> block(static_cast<std::size_t>(65536) * names.size());
-  while (true) {
-    const std::int64_t rows = simulator.next(block, 65536);
-    if (rows == 0) break;
-    for (std::int64_t r = 0; r < rows; ++r) {
-      for (std::size_t c = 0; c < names.size(); ++c) input.channels[c].values.push_back(block[r * names.size() + c]);
-    }
-  }
-  ChainArguments chain = args.chain;
-  if (chain.spec.empty()) chain.spec = args.sheet;
-  if (chain.trim == "auto") chain.trim = "none";  // a simulated log has no warm-up
-  finish([&](const AnalysisOptions& options) { return run_analysis(std::move(input), options); },
-         chain, {{"truth.json", simulation_sidecar_json(config)}}, flicker_taps(config));
-}
-
 }  // namespace
 
 void add_analyze_command(CLI::App& app) {
@@ -429,22 +211,6 @@ void add_analyze_command(CLI::App& app) {
       ->capture_default_str();
   add_chain_options(*command, args->chain);
   command->callback([args] { run_analyze(*args); });
-}
-
-void add_demo_command(CLI::App& app) {
-  auto args = std::make_shared<DemoArguments>();
-  args->chain.output = "demo-output";
-  CLI::App* command = app.add_subcommand(
-      "demo", "Simulate a log from a shipped data sheet and run `analyze` on it (the built-in demo)");
-  command->add_option("--sheet", args->sheet, "data sheet to simulate (name in specs/)")->capture_default_str();
-  command->add_option("--hours", args->hours, "simulated duration [h]")->capture_default_str();
-  command->add_option("--rate", args->rate_hz, "simulated sample rate [Hz]")->capture_default_str();
-  command->add_option("--seed", args->seed, "random seed")->capture_default_str();
-  command->add_option("--scale", args->scale,
-                      "simulated noise terms as a fraction of the sheet's typical values")
-      ->capture_default_str();
-  add_chain_options(*command, args->chain);
-  command->callback([args] { run_demo(*args); });
 }
 
 }  // namespace sigmatau::cli

@@ -1,0 +1,149 @@
+// The chain `analyze` and `demo` share: its options and running it into the output directory.
+#include "analysis_chain.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "log_options.hpp"
+#include "sigmatau/error.hpp"
+#include "sigmatau/fit.hpp"
+#include "sigmatau/output_file.hpp"
+#include "sigmatau/report.hpp"
+#include "sigmatau/resources.hpp"
+
+namespace sigmatau::cli {
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+AnalysisOptions chain_options(const ChainArguments& args) {
+  AnalysisOptions options;
+  options.statistics.clear();
+  for (const auto& s : split_list(args.statistics, "--stat")) options.statistics.push_back(parse_statistic(s));
+  options.taus = parse_tau_spec(args.taus);
+  if (!(args.ci > 0 && args.ci < 1)) throw Error("--ci must be between 0 and 1, got " + std::to_string(args.ci));
+  options.confidence = args.ci;
+  check_tau_range(args.fit_tau_min_s, args.fit_tau_max_s);  // before the log is read
+  options.fit_tau_min_s = args.fit_tau_min_s;
+  options.fit_tau_max_s = args.fit_tau_max_s;
+  if (args.trim == "auto") {
+    options.trim = TrimMode::automatic;
+  } else if (args.trim == "none") {
+    options.trim = TrimMode::none;
+  } else {
+    options.trim = TrimMode::fixed;
+    options.trim_s = parse_quantity_as(args.trim.find_first_not_of("0123456789.eE+-") == std::string::npos
+                                           ? args.trim + " s" : args.trim,
+                                       dim::time, "--trim");
+  }
+  for (double r : args.rate_out) {
+    if (!(r > 0)) throw Error("--rate-out must be > 0 Hz, got " + std::to_string(r));
+  }
+  options.filter_rates_hz = args.rate_out;
+  if (!args.spec.empty()) options.spec = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
+  options.convention = parse_density_convention(args.convention);
+  options.bias_model = parse_bias_model(args.bias_model);
+  options.threads = args.threads;
+  if (args.dynamic) {
+    if (args.dynamic_windows < 2) throw Error("--dynamic-windows must be >= 2");
+    options.dynamic_windows = args.dynamic_windows;
+  }
+  options.created_utc = utc_now();
+  return options;
+}
+
+}  // namespace
+
+void add_chain_options(CLI::App& command, ChainArguments& args) {
+  command.add_option("--stat", args.statistics,
+                     "statistics, comma-separated (the first is plotted and fitted)")
+      ->capture_default_str();
+  command.add_option("--taus", args.taus, "octave | decade | many[:P] | all | seconds list")
+      ->capture_default_str();
+  command.add_option("--ci", args.ci, "confidence level of every interval")->capture_default_str();
+  command.add_option("--tau-min", args.fit_tau_min_s,
+                     "the noise-term fit uses only taus >= this [s] (a sensor that filters its "
+                     "output departs from the noise terms at the shortest taus)");
+  command.add_option("--tau-max", args.fit_tau_max_s, "the noise-term fit uses only taus <= this [s]");
+  command.add_option("--spec", args.spec, "data sheet to check against (file or name in specs/)");
+  command.add_option("--rate-out", args.rate_out,
+                     "filter rates [Hz] for the covariances and exports (default: the log's rate)");
+  command.add_option("--trim", args.trim,
+                     "warm-up: auto (detect and trim), none, or a duration in seconds")
+      ->capture_default_str();
+  command.add_option("--plot-format", args.plot_format, "svg | png | pdf (report.html always inlines SVG)")
+      ->capture_default_str();
+  command.add_option("--density-convention", args.convention,
+                     "how the data sheet's noise density is read: two-sided (N = ND) or one-sided")
+      ->capture_default_str();
+  command.add_option("--bias-model", args.bias_model, "filter bias model: rw | gm")->capture_default_str();
+  // "report/" names the directory "report": with the slash kept, the directory was created first
+  // and then could not be moved into place ("cannot rename: Invalid argument").
+  command.add_option("-o,--output", args.output, "output directory (written atomically)")
+      ->capture_default_str()
+      ->transform(
+          [](std::string path) {
+            while (path.size() > 1 && path.back() == '/') path.pop_back();
+            return path;
+          },
+          "");
+  command.add_flag("--force", args.force, "replace an existing output directory");
+  command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
+  command.add_flag("--dynamic", args.dynamic,
+                   "also the dynamic Allan deviation (OADEV over sliding windows) of each channel");
+  command.add_option("--dynamic-windows", args.dynamic_windows, "number of half-overlapping windows")
+      ->capture_default_str();
+}
+
+void check_output(const ChainArguments& args) {
+  std::error_code ec;
+  if (std::filesystem::exists(args.output, ec) && !args.force) {
+    throw Error(args.output + " exists; use --force to replace it");
+  }
+  check_can_create_in(args.output);
+}
+
+void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze,
+            const ChainArguments& args, const std::map<std::string, std::string>& extra,
+            std::int64_t flicker_taps, const std::vector<std::string>& notes) {
+  const PlotFormat plot_format = parse_plot_format(args.plot_format);
+  check_output(args);
+  AnalysisOptions options = chain_options(args);
+  options.flicker_taps = flicker_taps;
+  const auto start = std::chrono::steady_clock::now();
+  AnalysisOutput analysis = analyze(options);
+  if (!notes.empty()) {
+    // results.json is the record the report is drawn from: the notes go into its warnings.
+    nlohmann::json results = nlohmann::json::parse(analysis.results_json);
+    nlohmann::json warnings = notes;
+    for (const auto& w : results["warnings"]) warnings.push_back(w);
+    results["warnings"] = warnings;
+    analysis.results_json = results.dump(1) + "\n";
+    analysis.warnings.insert(analysis.warnings.begin(), notes.begin(), notes.end());
+  }
+  ReportOptions report_options;
+  report_options.plot_format = plot_format;
+  ReportFiles files = build_report(analysis.results_json, report_options);
+  files.files["results.json"] = analysis.results_json;
+  for (const auto& [name, text] : analysis.filter_files) files.files[name] = text;
+  for (const auto& [name, text] : extra) files.files[name] = text;
+  write_output_directory(args.output, files, args.force);
+  for (const auto& w : analysis.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
+  for (const auto& w : files.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The filter files are named only when there are some (a log without a fitted sensor has none).
+  std::cout << files.files.at("summary.md") << "\nwrote " << args.output << "/ (" << files.files.size()
+            << " files: report.html, results.json, summary.md, plots"
+            << (analysis.filter_files.empty() ? "" : ", filter files") << ") in " << seconds << " s\n";
+}
+
+}  // namespace sigmatau::cli
