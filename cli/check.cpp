@@ -108,8 +108,15 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
       << result << "; pass: upper bound within the limit, marginal: estimate within but "
       << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
-      << "beyond (a longer log is needed); |x|: compared by magnitude\n"
-      << "# " << kGateConfidenceNote << "\n";
+      << "beyond (a longer log is needed); |x|: compared by magnitude\n";
+  // How strong a pass on a noise term is (fit's default intervals are 68.3 %); a calibration's
+  // terms have their own default level and are always detected.
+  const bool noise_terms = std::any_of(items.begin(), items.end(), [](const ComplianceItem& i) {
+    return i.measured.quantity == MeasuredQuantity::white_noise ||
+           i.measured.quantity == MeasuredQuantity::bias_instability ||
+           i.measured.quantity == MeasuredQuantity::rate_random_walk;
+  });
+  if (noise_terms) out << "# " << kGateConfidenceNote << "\n";
   out << row({"parameter", "verdict", "measured", "upper bound", "limit", "margin", "upper"});
   std::vector<const ComplianceItem*> informational;
   for (const auto& item : items) {

@@ -339,8 +339,10 @@ std::string limit_cell(const json& item) {
   const std::string text = item.value("limit_text", "");
   if (text.empty()) return "";  // not specified: no limit
   const std::string scaled = item.value("limit_factor_text", "");
-  return text + (scaled.empty() ? "" : " " + scaled) +
-         (item.value("limit_is_typical", false) ? " (typ)" : " (max)");
+  const std::string kind = !item.contains("limit_is_typical") ? ""
+                           : item.value("limit_is_typical", false) ? " (typ)"
+                                                                   : " (max)";
+  return text + (scaled.empty() ? "" : " " + scaled) + kind;
 }
 
 /// The "measured / limit" cell of the compliance tables.
