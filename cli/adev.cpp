@@ -14,6 +14,8 @@
 #include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/allan_stream.hpp"
+#include "sigmatau/data_checks.hpp"
+#include "sigmatau/taus.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -77,36 +79,48 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   return std::move(result.curves);
 }
 
-/// How deviations (computed in SI, or in the input's own unit without --unit) are printed.
+/// How a channel's deviations (computed in SI, or in the input's own unit without a unit) are
+/// printed.
 struct OutputUnit {
   std::string label;   // "" when the input unit is unknown
   double from_si = 1;  // printed = computed * from_si
 };
 
-Dimension divided_by_time(Dimension d) {
-  d.time2 -= 2;
-  return d;
+/// The printed unit of every channel: its own (ChannelUnit, as rate_unit gives it), or the
+/// --out-unit of the same dimension ("deg/h", or one per sensor: "deg/h,ug").
+std::vector<OutputUnit> output_units(const LoadedChannels& loaded, const std::string& out_unit) {
+  std::vector<RateUnit> own;
+  std::vector<Dimension> dimensions;
+  std::vector<bool> known;
+  for (const ChannelUnit& u : loaded.channel_units) {
+    own.push_back(rate_unit(u, loaded.kind));
+    dimensions.push_back(own.back().dimension);
+    known.push_back(!own.back().label.empty());
+  }
+  const std::vector<std::string> outs =
+      out_unit.empty() ? std::vector<std::string>{} : split_list(out_unit, "--out-unit");
+  const std::vector<int> chosen = match_out_units(outs, dimensions, known, "the deviations are");
+  std::vector<OutputUnit> units;
+  for (std::size_t c = 0; c < own.size(); ++c) {
+    if (chosen[c] < 0) {
+      units.push_back({own[c].label, own[c].from_result});
+      continue;
+    }
+    const Unit unit = parse_unit(outs[static_cast<std::size_t>(chosen[c])]);
+    units.push_back({outs[static_cast<std::size_t>(chosen[c])],
+                     loaded.channel_units[c].result_to_si / unit.factor});
+  }
+  return units;
 }
 
-OutputUnit output_unit(const LoadedChannels& loaded, const std::string& out_unit) {
-  if (loaded.unit.empty()) {
-    if (!out_unit.empty()) throw Error("--out-unit needs --unit (the unit of the input values)");
-    return {};
-  }
-  const Dimension dev_dimension =
-      loaded.kind == DataKind::rate ? loaded.dimension : divided_by_time(loaded.dimension);
-  if (!out_unit.empty()) {
-    const Unit unit = parse_unit(out_unit);
-    if (!(unit.dimension == dev_dimension)) {
-      throw Error("--out-unit " + out_unit + " is " + to_string(unit.dimension) +
-                  ", but the deviations of --unit " + loaded.unit + " (--kind " +
-                  std::string(to_string(loaded.kind)) + ") are " + to_string(dev_dimension));
-    }
-    return {out_unit, 1.0 / unit.factor};
-  }
-  if (loaded.kind == DataKind::rate) return {loaded.unit, 1.0 / loaded.to_si};
-  if (loaded.dimension == dim::time) return {"1", 1.0};  // clock phase in s: fractional frequency
-  return {"(" + loaded.unit + ")/s", 1.0 / loaded.to_si};
+/// --out-unit checked before the log is read (with the --unit given; channel units from names
+/// or a bag are known only once it is read).
+void check_out_unit_early(const LogArguments& args, const std::string& out_unit) {
+  if (out_unit.empty() || per_channel_units(args)) return;
+  LoadedChannels unit_only;
+  set_input_unit(args, unit_only);
+  unit_only.channel_units.push_back({unit_only.unit, unit_only.dimension, unit_only.to_si, 1.0, "--unit"});
+  output_units(unit_only, out_unit);
 }
 
 /// TDEV is a time deviation: its unit is the deviation unit times seconds.
@@ -124,7 +138,7 @@ std::string format_number(double v) {
 
 std::string render_table(const LoadedChannels& loaded, std::size_t samples, const std::vector<Statistic>& stats,
                          const std::vector<std::vector<AllanCurve>>& curves,
-                         const OutputUnit& unit) {
+                         const std::vector<OutputUnit>& units, const std::string& mode) {
   std::ostringstream out;
   out << "# " << loaded.log.path << ": " << samples << " samples at "
       << loaded.rate_hz << " Hz, kind " << to_string(loaded.kind);
@@ -132,11 +146,11 @@ std::string render_table(const LoadedChannels& loaded, std::size_t samples, cons
     out << ", " << loaded.log.timing.segment_starts.size()
         << " contiguous segments pooled (--gaps split)";
   }
-  out << "\n";
+  out << "\n# mode: " << mode << "\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
       const auto& curve = curves[c][s];
-      const auto u = unit_for(stats[s], unit);
+      const auto u = unit_for(stats[s], units[c]);
       out << "\n# " << loaded.log.channel_names[c] << "  " << to_string(stats[s]) << "  ["
           << (u.label.empty() ? "input unit" : u.label) << "]  " << curve.confidence_level * 100
           << "% interval\n";
@@ -158,12 +172,16 @@ std::string render_table(const LoadedChannels& loaded, std::size_t samples, cons
 }
 
 std::string render_csv(const LoadedChannels& loaded, const std::vector<Statistic>& stats,
-                       const std::vector<std::vector<AllanCurve>>& curves, const OutputUnit& unit) {
+                       const std::vector<std::vector<AllanCurve>>& curves,
+                       const std::vector<OutputUnit>& units, const std::string& mode) {
   std::ostringstream out;
+  // The mode goes in a comment line only when it is not exact, so that exact CSV stays plain
+  // CSV (and a stream result is never mistaken for an exact one).
+  if (mode != "exact") out << "# mode: " << mode << "\n";
   out << "channel,statistic,unit,tau_s,m,n,alpha,edf,ci_low,dev,ci_high\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
-      const auto u = unit_for(stats[s], unit);
+      const auto u = unit_for(stats[s], units[c]);
       for (const auto& p : curves[c][s].points) {
         out << loaded.log.channel_names[c] << ',' << to_string(stats[s]) << ',' << u.label << ','
             << format_number(p.value.tau_s) << ',' << p.value.m << ',' << p.value.n_terms << ','
@@ -183,11 +201,14 @@ nlohmann::json json_number(double v) {
 
 std::string render_json(const LoadedChannels& loaded, std::size_t samples, const std::vector<Statistic>& stats,
                         const std::vector<std::vector<AllanCurve>>& curves,
-                        const OutputUnit& unit, const std::string& edf_model) {
+                        const std::vector<OutputUnit>& units, const std::string& edf_model,
+                        const nlohmann::json& mode, const std::vector<std::string>& warnings) {
   nlohmann::json doc;
   doc["tool"] = "sigmatau";
   doc["version"] = SIGMATAU_VERSION;
   doc["edf_model"] = edf_model;
+  doc["mode"] = mode;
+  doc["warnings"] = warnings;
   doc["input"] = {{"path", loaded.log.path},
                   {"rate_hz", loaded.rate_hz},
                   {"samples", samples},
@@ -209,7 +230,7 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
   doc["results"] = nlohmann::json::array();
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
-      const auto u = unit_for(stats[s], unit);
+      const auto u = unit_for(stats[s], units[c]);
       nlohmann::json points = nlohmann::json::array();
       for (const auto& p : curves[c][s].points) {
         points.push_back({{"tau", p.value.tau_s},
@@ -310,6 +331,102 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
                                         parse_edf_model(args.edf));
 }
 
+/// Constant channels of a log in memory (check_stuck: a run as long as the channel); false
+/// when the samples are not in memory. Fills `constant` and `value` per channel.
+bool find_constant(const LoadedChannels& loaded, std::vector<bool>& constant,
+                   std::vector<std::optional<std::string>>& value) {
+  const auto& channels = loaded.log.channels;
+  constant.assign(channels.size(), false);
+  value.assign(channels.size(), std::nullopt);
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const auto w = check_stuck(channels[c], loaded.log.channel_names[c]);
+    if (w && w->longest_rows == static_cast<std::int64_t>(channels[c].size())) {
+      constant[c] = true;
+      char text[40];
+      std::snprintf(text, sizeof text, "%.9g", w->value / (loaded.to_si != 0 ? loaded.to_si : 1.0));
+      value[c] = text;
+    }
+  }
+  return true;
+}
+
+/// Constant channels from their curves, when the samples were never in memory: every
+/// deviation of every statistic is 0 (stream and out-of-core paths).
+std::vector<bool> constant_by_curves(const std::vector<std::vector<AllanCurve>>& curves) {
+  std::vector<bool> constant;
+  for (const auto& channel : curves) {
+    bool any_point = false;
+    bool all_zero = true;
+    for (const auto& curve : channel) {
+      for (const auto& p : curve.points) {
+        any_point = true;
+        all_zero = all_zero && p.value.dev == 0;
+      }
+    }
+    constant.push_back(any_point && all_zero);
+  }
+  return constant;
+}
+
+/// Explicit --taus with several statistics: each statistic gets the asked taus it can reach on
+/// `n_phase_points`; the ones it cannot are noted on stderr. A tau that no statistic reaches
+/// stays in every list, so that averaging_factors reports it as before (exit 2).
+std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
+                                        std::int64_t n_phase_points, double tau0_s,
+                                        const std::string& input) {
+  std::vector<TauSpec> specs(stats.size(), taus);
+  if (taus.kind != TauSpec::Kind::explicit_seconds || stats.size() < 2) return specs;
+  for (auto& spec : specs) spec.seconds.clear();
+  std::vector<std::string> skipped(stats.size());
+  for (const double seconds : taus.seconds) {
+    const double m = std::round(seconds / tau0_s);
+    std::vector<bool> reach(stats.size());
+    bool any = false;
+    for (std::size_t s = 0; s < stats.size(); ++s) {
+      reach[s] = m <= static_cast<double>(max_averaging_factor(stats[s], n_phase_points));
+      any = any || reach[s];
+    }
+    for (std::size_t s = 0; s < stats.size(); ++s) {
+      if (reach[s] || !any) {
+        specs[s].seconds.push_back(seconds);
+      } else {
+        char text[40];
+        std::snprintf(text, sizeof text, "%g", seconds);
+        skipped[s] += (skipped[s].empty() ? "" : ", ") + std::string(text);
+      }
+    }
+  }
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    if (skipped[s].empty()) continue;
+    const std::int64_t max_m = max_averaging_factor(stats[s], n_phase_points);
+    std::cerr << "sigmatau: note: " << input << ": " << to_string(stats[s])
+              << " skips tau " << skipped[s] << " s: its longest on this log is "
+              << static_cast<double>(max_m) * tau0_s << " s (m = " << max_m << ")\n";
+  }
+  return specs;
+}
+
+/// compute_allan_curves with the taus of taus_per_statistic: one call when every statistic has
+/// the same list (the usual case), else one per statistic.
+std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
+                                                          const std::vector<Statistic>& stats,
+                                                          const TauSpec& taus,
+                                                          const AdevArguments& args,
+                                                          EdfModel edf_model) {
+  const std::vector<TauSpec> specs = taus_per_statistic(
+      taus, stats, static_cast<std::int64_t>(series.front().size()), series.front().tau0_s(),
+      args.log.input);
+  bool same = true;
+  for (const auto& spec : specs) same = same && spec.seconds == specs.front().seconds;
+  if (same) return compute_allan_curves(series, stats, specs.front(), args.ci, args.threads, edf_model);
+  std::vector<std::vector<AllanCurve>> curves(series.size());
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    auto one = compute_allan_curves(series, {stats[s]}, specs[s], args.ci, args.threads, edf_model);
+    for (std::size_t c = 0; c < series.size(); ++c) curves[c].push_back(std::move(one[c].front()));
+  }
+  return curves;
+}
+
 void run_adev(const AdevArguments& args) {
   std::vector<Statistic> stats;
   for (const auto& name : split_list(args.statistics, "--stat")) stats.push_back(parse_statistic(name));
@@ -348,10 +465,16 @@ void run_adev(const AdevArguments& args) {
               << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
     out_of_core = true;
   }
+  check_out_unit_early(args.log, args.out_unit);
   LoadedChannels loaded;
   std::size_t samples = 0;
   std::string partial_error;
   std::vector<std::vector<AllanCurve>> curves;
+  // Constant channels: from the samples (check_stuck) when they are in memory, else from the
+  // curves (every deviation 0).
+  bool constant_found = false;
+  std::vector<bool> constant;
+  std::vector<std::optional<std::string>> constant_value;
   if (out_of_core) {
     curves = run_out_of_core(args, stats, taus, loaded, samples);
   } else if (stream) {
@@ -362,23 +485,52 @@ void run_adev(const AdevArguments& args) {
     }
   } else if (loaded = load_channels(args.log); loaded.log.timing.segment_starts.size() > 1) {
     samples = loaded.log.channels.front().size();
+    constant_found = find_constant(loaded, constant, constant_value);
     curves = split_curves(args, stats, taus, loaded);
   } else {
     samples = loaded.log.channels.front().size();
+    constant_found = find_constant(loaded, constant, constant_value);
     std::vector<PhaseSeries> series;
     series.reserve(loaded.log.channels.size());
     for (auto& channel : loaded.log.channels) {
       series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
       std::vector<double>().swap(channel);  // the raw samples are no longer needed
     }
-    curves = compute_allan_curves(series, stats, taus, args.ci, args.threads, edf_model);
+    curves = curves_per_statistic(series, stats, taus, args, edf_model);
   }
-  const OutputUnit unit = output_unit(loaded, args.out_unit);
+  if (!constant_found) {
+    constant = constant_by_curves(curves);
+    constant_value.assign(constant.size(), std::nullopt);
+  }
+  std::vector<std::string> warnings;
+  for (std::size_t c = 0; c < constant.size(); ++c) {
+    if (!constant[c]) continue;
+    warnings.push_back("channel " + loaded.log.channel_names[c] + " is constant (" +
+                       (constant_value[c] ? "every value is " + *constant_value[c]
+                                          : std::string("every deviation is 0")) +
+                       "): a stuck sensor, or precision lost (e.g. a large offset stored as "
+                       "float32); its deviations are 0 and say nothing about the sensor");
+    std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+  }
+  // load_channels resolved the units; the stream and out-of-core paths do it here.
+  if (loaded.channel_units.size() != loaded.log.channel_names.size()) resolve_channel_units(args.log, loaded);
+  const std::vector<OutputUnit> units = output_units(loaded, args.out_unit);
 
+  // Stream results are approximate at long taus (strided start points): said in every format.
+  std::string mode_text = "exact";
+  nlohmann::json mode = {{"name", "exact"}};
+  if (stream) {
+    mode_text = "stream (approximate: " + std::to_string(args.density) +
+                " start points per tau at long taus, --density; the EDF is lowered to match)";
+    mode = {{"name", "stream"}, {"density", args.density}, {"approximate", true}};
+  } else if (out_of_core) {
+    mode_text = "exact (out of core)";
+    mode = {{"name", "exact"}, {"out_of_core", true}};
+  }
   std::string text;
-  if (args.format == "table") text = render_table(loaded, samples, stats, curves, unit);
-  if (args.format == "csv") text = render_csv(loaded, stats, curves, unit);
-  if (args.format == "json") text = render_json(loaded, samples, stats, curves, unit, args.edf);
+  if (args.format == "table") text = render_table(loaded, samples, stats, curves, units, mode_text);
+  if (args.format == "csv") text = render_csv(loaded, stats, curves, units, stream ? mode_text : "exact");
+  if (args.format == "json") text = render_json(loaded, samples, stats, curves, units, args.edf, mode, warnings);
   if (args.output.empty()) {
     std::cout << text;
   } else {
@@ -390,16 +542,21 @@ void run_adev(const AdevArguments& args) {
                 " samples read before it)");
   }
   if (!args.plot.empty()) {
-    // The first statistic asked, every channel, with its confidence band.
-    const auto u = unit_for(stats.front(), unit);
+    // The first statistic asked, every channel, with its confidence band. Channels in
+    // different units (a gyro and an accelerometer) carry their unit in their names.
+    bool one_unit = true;
+    for (const auto& u : units) one_unit = one_unit && u.label == units.front().label;
     DeviationPlot plot;
     plot.title = loaded.log.path;
     std::string name(to_string(stats.front()));
     for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-    plot.y_label = name + " [" + (u.label.empty() ? "input unit" : u.label) + "]";
+    const auto first = unit_for(stats.front(), units.front());
+    plot.y_label = name + (one_unit ? " [" + (first.label.empty() ? std::string("input unit") : first.label) + "]"
+                                    : std::string(" [unit per channel]"));
     for (std::size_t c = 0; c < curves.size(); ++c) {
+      const auto u = unit_for(stats.front(), units[c]);
       PlotCurve curve;
-      curve.name = loaded.log.channel_names[c];
+      curve.name = loaded.log.channel_names[c] + (one_unit ? "" : " [" + u.label + "]");
       for (const auto& p : curves[c].front().points) {
         curve.x.push_back(p.value.tau_s);
         curve.y.push_back(p.value.dev * u.from_si);
@@ -420,6 +577,7 @@ void add_adev_command(CLI::App& app) {
       "adev", "Allan-family deviations (OADEV, ADEV, MDEV, TDEV, HDEV, OHDEV, TOTDEV) with "
               "confidence intervals");
   add_log_options(*command, args->log);
+  add_sensor_unit_options(*command, args->log);
   command->add_option("--stat", args->statistics,
                       "statistics, comma-separated: oadev,adev,mdev,tdev,hdev,ohdev,totdev")
       ->capture_default_str();
@@ -432,7 +590,8 @@ void add_adev_command(CLI::App& app) {
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");
   command->add_option("--out-unit", args->out_unit,
-                      "unit of the printed deviations, e.g. deg/h (needs --unit)");
+                      "unit of the printed deviations, e.g. deg/h (needs --unit, --gyro-unit or "
+                      "--accel-unit, or a ROS bag); one per sensor: deg/h,ug");
   command->add_option("--plot", args->plot,
                       "also plot the first statistic to FILE (.svg, .png or .pdf; needs gnuplot)");
   command->add_option("--threads", args->threads, "worker threads (0: one per core)")

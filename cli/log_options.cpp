@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::cli {
@@ -80,6 +81,11 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
   command.add_option("--reorder-window", args.reorder_window,
                      "ROS bag: out-of-order stamps are sorted within this many messages "
                      "(default 10000); a message later than that is an error");
+  command.add_option("--truncated", args.truncated,
+                     "ROS bag whose recording was cut short (its recorder died: no index or "
+                     "summary, the file ends inside a record): error (default; the message says "
+                     "where and how many messages precede the cut) or use (analyse the complete "
+                     "messages before the cut, with a note)");
   std::vector<CLI::Option*> added;
   const std::vector<CLI::Option*> all = command.get_options();
   for (std::size_t i = options_before; i < all.size(); ++i) {
@@ -119,7 +125,12 @@ LogOptions log_options_from(const LogArguments& args) {
       if (*args.reorder_window < 0) throw Error("--reorder-window must be >= 0 messages");
       options.reorder_window = *args.reorder_window;
     }
+    if (!args.truncated.empty()) options.truncated = parse_truncated_policy(args.truncated);
     return options;
+  }
+  if (!args.truncated.empty()) {
+    throw Error(args.input + ": --truncated is for ROS bags (.bag, .mcap or a rosbag2 folder) "
+                             "whose recording was cut short");
   }
   if (!args.topic.empty() || !args.stamp.empty() || args.reorder_window) {
     throw Error(args.input + ": --topic, --stamp and --reorder-window are for ROS bags (.bag, "
@@ -169,6 +180,22 @@ void note_reordering(const std::string& input, const TimingReport& timing,
                static_cast<long long>(reorder_window));
 }
 
+/// A bag read under --truncated use whose recording was cut short: where, and what was used.
+void note_truncation(const std::string& input, const TimingReport& timing) {
+  if (timing.truncated_at_byte < 0) return;
+  // A rosbag2 folder names the file of it that was cut.
+  const std::string of_file =
+      timing.truncated_file == input ? std::string() : " of " + timing.truncated_file;
+  std::fprintf(stderr,
+               "sigmatau: warning: %s: the recording was cut short at byte %lld%s (its recorder "
+               "stopped without closing the file); the %lld complete message%s of %s before the "
+               "cut %s used (--truncated use)\n",
+               input.c_str(), static_cast<long long>(timing.truncated_at_byte), of_file.c_str(),
+               static_cast<long long>(timing.samples),
+               timing.samples == 1 ? "" : "s", timing.bag_topic.c_str(),
+               timing.samples == 1 ? "is" : "are");
+}
+
 }  // namespace
 
 double quantity_option(const std::string& text, const Dimension& d, const char* option,
@@ -182,6 +209,7 @@ double quantity_option(const std::string& text, const Dimension& d, const char* 
 void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing) {
   note_topic_choice(args.input, timing);
   note_reordering(args.input, timing, options.reorder_window);
+  note_truncation(args.input, timing);
   if (timing.rows_skipped_nonfinite > 0) {
     std::fprintf(stderr,
                  "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite "
@@ -213,6 +241,162 @@ Dimension sensor_unit_dimension(bool gyro, DataKind kind) {
   return d;
 }
 
+void add_sensor_unit_options(CLI::App& command, LogArguments& args) {
+  command.add_option("--gyro-unit", args.gyro_unit,
+                     "unit of the gyro columns (named gx / gyro_x / wx ...) of a log with both "
+                     "sensors, instead of --unit, e.g. deg/s");
+  command.add_option("--accel-unit", args.accel_unit,
+                     "unit of the accelerometer columns (named ax / accel_x ...) of a log with "
+                     "both sensors, instead of --unit, e.g. g");
+}
+
+bool per_channel_units(const LogArguments& args) {
+  return !args.gyro_unit.empty() || !args.accel_unit.empty() || is_bag_path(args.input);
+}
+
+namespace {
+
+/// The sensor a unit of data `kind` names (nullopt: neither an angular rate nor an
+/// acceleration, e.g. s for a clock).
+std::optional<Sensor> sensor_of_unit(const Dimension& d, DataKind kind) {
+  if (d == sensor_unit_dimension(true, kind)) return Sensor::gyro;
+  if (d == sensor_unit_dimension(false, kind)) return Sensor::accel;
+  return std::nullopt;
+}
+
+const char* sensor_words(Sensor s) { return s == Sensor::gyro ? "a gyro" : "an accelerometer"; }
+
+/// ROS REP 103 / sensor_msgs/Imu: angular_velocity in rad/s, linear_acceleration in m/s^2.
+ChannelUnit bag_unit(Sensor s) {
+  ChannelUnit u;
+  u.unit = s == Sensor::gyro ? "rad/s" : "m/s^2";
+  u.dimension = s == Sensor::gyro ? dim::angular_rate : dim::acceleration;
+  u.source = "ROS sensor_msgs/Imu (REP 103)";
+  return u;
+}
+
+}  // namespace
+
+void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded) {
+  const auto& names = loaded.log.channel_names;
+  loaded.channel_units.assign(names.size(), ChannelUnit{});
+  const bool bag = is_bag_path(args.input);
+  const bool per_sensor = !args.gyro_unit.empty() || !args.accel_unit.empty();
+  const DataKind kind = parse_data_kind(args.kind);
+  if (bag && kind != DataKind::rate) {
+    throw Error(args.input + ": a ROS bag's sensor_msgs/Imu messages are rates (rad/s, m/s^2): "
+                "leave out --kind " + args.kind);
+  }
+  if (per_sensor && !args.unit.empty()) {
+    throw Error("--unit " + args.unit + " names one unit for every column; with --gyro-unit / "
+                "--accel-unit leave it out");
+  }
+  // The units given, parsed once: --gyro-unit / --accel-unit, or one --unit for all.
+  std::optional<ChannelUnit> given_gyro, given_accel, given_all;
+  auto given = [&](const std::string& text, const Dimension& d, const char* option) {
+    const Unit u = parse_unit_as(text, d, option);
+    return ChannelUnit{text, u.dimension, u.factor, u.factor, option};
+  };
+  if (!args.gyro_unit.empty()) given_gyro = given(args.gyro_unit, sensor_unit_dimension(true, kind), "--gyro-unit");
+  if (!args.accel_unit.empty()) given_accel = given(args.accel_unit, sensor_unit_dimension(false, kind), "--accel-unit");
+  if (!args.unit.empty()) {
+    // load_channels scaled the samples to SI already, except with per-channel units (a bag).
+    const Unit u = parse_unit(args.unit);  // loaded.to_si is 1 for a bag (not scaled on reading)
+    given_all = ChannelUnit{args.unit, u.dimension, u.factor, bag ? u.factor : 1.0, "--unit"};
+  }
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const auto role = classify_channel(names[c]);
+    ChannelUnit& unit = loaded.channel_units[c];
+    if (bag) {
+      if (!role) continue;  // not an Imu axis (cannot happen with the bag reader's names)
+      unit = bag_unit(role->sensor);
+      const std::optional<ChannelUnit>& other =
+          given_all ? given_all : (role->sensor == Sensor::gyro ? given_gyro : given_accel);
+      if (other && !(other->dimension == unit.dimension && other->to_si == 1.0)) {
+        throw Error(args.input + ": channel " + names[c] + " is " + unit.unit +
+                    " (a ROS bag's sensor_msgs/Imu, whose units REP 103 fixes), but " +
+                    other->source + " " + other->unit + " says otherwise; leave " +
+                    other->source + " out (--out-unit chooses the printed unit)");
+      }
+      continue;
+    }
+    if (given_all) {
+      unit = *given_all;
+      const auto unit_sensor = sensor_of_unit(unit.dimension, kind);
+      if (role && unit_sensor && *unit_sensor != role->sensor) {
+        throw Error("--unit " + args.unit + " is " +
+                    (*unit_sensor == Sensor::gyro ? "an angular rate" : "an acceleration") +
+                    " (" + sensor_words(*unit_sensor) + "'s unit), but column " + names[c] +
+                    " is " + sensor_words(role->sensor) +
+                    " axis by its name; give each sensor its unit with --gyro-unit and "
+                    "--accel-unit (e.g. --gyro-unit deg/s --accel-unit g), or choose the columns "
+                    "of one sensor with --columns");
+      }
+      continue;
+    }
+    if (!per_sensor) continue;  // no unit at all: numbers as they are
+    if (!role) {
+      throw Error(args.input + ": column \"" + names[c] + "\" is neither a gyro nor an "
+                  "accelerometer by its name (gx / gyro_x / wx, ax / accel_x), so --gyro-unit / "
+                  "--accel-unit cannot say its unit; choose the sensor columns with --columns");
+    }
+    const auto& chosen = role->sensor == Sensor::gyro ? given_gyro : given_accel;
+    if (chosen) unit = *chosen;
+  }
+}
+
+RateUnit rate_unit(const ChannelUnit& unit, DataKind kind) {
+  RateUnit r;
+  if (unit.unit.empty()) return r;
+  r.dimension = unit.dimension;
+  r.from_result = unit.result_to_si / unit.to_si;  // computed -> SI -> the input unit
+  if (kind == DataKind::rate) {
+    r.label = unit.unit;
+    return r;
+  }
+  r.dimension.time2 -= 2;
+  if (unit.dimension == dim::time) {
+    r.label = "1";  // clock phase in s: fractional frequency
+    r.from_result = unit.result_to_si;
+    return r;
+  }
+  r.label = "(" + unit.unit + ")/s";
+  return r;
+}
+
+std::vector<int> match_out_units(const std::vector<std::string>& units_text,
+                                 const std::vector<Dimension>& wanted,
+                                 const std::vector<bool>& known, const std::string& what) {
+  std::vector<int> chosen(wanted.size(), -1);
+  if (units_text.empty()) return chosen;
+  if (std::none_of(known.begin(), known.end(), [](bool k) { return k; })) {
+    throw Error("--out-unit needs --unit (the unit of the input values; or --gyro-unit / "
+                "--accel-unit for a log with both sensors)");
+  }
+  for (std::size_t i = 0; i < units_text.size(); ++i) {
+    const Unit unit = parse_unit(units_text[i]);
+    bool used = false;
+    for (std::size_t c = 0; c < wanted.size(); ++c) {
+      if (known[c] && wanted[c] == unit.dimension) {
+        if (chosen[c] >= 0) throw Error("--out-unit gives two units of " + to_string(unit.dimension));
+        chosen[c] = static_cast<int>(i);
+        used = true;
+      }
+    }
+    if (!used) {
+      std::string dims;
+      for (std::size_t c = 0; c < wanted.size(); ++c) {
+        if (!known[c]) continue;
+        const std::string d = to_string(wanted[c]);
+        if (dims.find(d) == std::string::npos) dims += (dims.empty() ? "" : " or ") + d;
+      }
+      throw Error("--out-unit " + units_text[i] + " is " + to_string(unit.dimension) + ", but " +
+                  what + " " + dims);
+    }
+  }
+  return chosen;
+}
+
 void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   loaded.kind = parse_data_kind(args.kind);
   loaded.unit = args.unit;
@@ -233,6 +417,10 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
     loaded.to_si = unit.factor;
     loaded.dimension = unit.dimension;
   }
+  // Per-channel units: the samples stay as read and each channel's results are scaled by its
+  // own factor (deviations and densities scale with the unit; noise identification and EDF do
+  // not depend on it).
+  if (per_channel_units(args)) loaded.to_si = 1;
 }
 
 LoadedChannels load_channels(const LogArguments& args) {
@@ -252,6 +440,7 @@ LoadedChannels load_channels(const LogArguments& args) {
                      "no samples: the input holds no data rows");
   }
   loaded.rate_hz = resolve_rate_hz(args.rate_hz, loaded.log.timing, args.input);
+  resolve_channel_units(args, loaded);
   if (loaded.to_si != 1.0) {
     for (auto& channel : loaded.log.channels) {
       for (double& v : channel) v *= loaded.to_si;

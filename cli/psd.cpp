@@ -61,38 +61,44 @@ struct DensityUnit {
   double psd_from_si = 1;
 };
 
-DensityUnit density_unit(const LoadedChannels& loaded, const std::string& out_unit) {
-  DensityUnit u;
-  if (loaded.unit.empty()) {
-    if (!out_unit.empty()) throw Error("--out-unit needs --unit (the unit of the input values)");
-    u.psd_label = "(input unit)^2/Hz";
-    u.density_label = "(input unit)/sqrt(Hz)";
-    return u;
+/// The units of every channel's PSD and noise density: its own rate unit (rate_unit), or the
+/// --out-unit of the density's dimension ("deg/sqrt(h)", or one per sensor:
+/// "deg/sqrt(h),ug/sqrt(Hz)").
+std::vector<DensityUnit> density_units(const LoadedChannels& loaded, const std::string& out_unit) {
+  std::vector<RateUnit> rates;
+  std::vector<Dimension> densities;
+  std::vector<bool> known;
+  for (const ChannelUnit& cu : loaded.channel_units) {
+    rates.push_back(rate_unit(cu, loaded.kind));
+    Dimension d = rates.back().dimension;
+    d.time2 += 1;  // x sqrt(s) = / sqrt(Hz)
+    densities.push_back(d);
+    known.push_back(!rates.back().label.empty());
   }
-  Dimension rate_dimension = loaded.dimension;
-  std::string rate_label = loaded.unit;
-  double rate_from_si = 1.0 / loaded.to_si;
-  if (loaded.kind != DataKind::rate) {
-    rate_dimension.time2 -= 2;
-    rate_label = "(" + loaded.unit + ")/s";
+  const std::vector<std::string> outs =
+      out_unit.empty() ? std::vector<std::string>{} : split_list(out_unit, "--out-unit");
+  const std::vector<int> chosen = match_out_units(outs, densities, known, "a noise density of these channels is");
+  std::vector<DensityUnit> units;
+  for (std::size_t c = 0; c < rates.size(); ++c) {
+    DensityUnit u;
+    if (!known[c]) {
+      u.psd_label = "(input unit)^2/Hz";
+      u.density_label = "(input unit)/sqrt(Hz)";
+      units.push_back(u);
+      continue;
+    }
+    u.psd_label = "(" + rates[c].label + ")^2/Hz";
+    u.psd_from_si = rates[c].from_result * rates[c].from_result;
+    u.density_label = rates[c].label + "/sqrt(Hz)";
+    u.density_from_si = rates[c].from_result;
+    if (chosen[c] >= 0) {
+      const std::string& text = outs[static_cast<std::size_t>(chosen[c])];
+      u.density_label = text;
+      u.density_from_si = loaded.channel_units[c].result_to_si / parse_unit(text).factor;
+    }
+    units.push_back(u);
   }
-  u.psd_label = "(" + rate_label + ")^2/Hz";
-  u.psd_from_si = rate_from_si * rate_from_si;
-  if (out_unit.empty()) {
-    u.density_label = rate_label + "/sqrt(Hz)";
-    u.density_from_si = rate_from_si;
-    return u;
-  }
-  Dimension density_dimension = rate_dimension;
-  density_dimension.time2 += 1;  // x sqrt(s) = / sqrt(Hz)
-  const Unit unit = parse_unit(out_unit);
-  if (!(unit.dimension == density_dimension)) {
-    throw Error("--out-unit " + out_unit + " is " + to_string(unit.dimension) +
-                ", but a noise density of " + rate_label + " is " + to_string(density_dimension));
-  }
-  u.density_label = out_unit;
-  u.density_from_si = 1.0 / unit.factor;
-  return u;
+  return units;
 }
 
 void run_psd(const PsdArguments& args) {
@@ -116,12 +122,27 @@ void run_psd(const PsdArguments& args) {
   {
     LoadedChannels unit_only;  // --kind, --unit and --out-unit are checked before reading
     set_input_unit(args.log, unit_only);
-    density_unit(unit_only, args.out_unit);
+    if (!per_channel_units(args.log)) {  // channel units from names or a bag: known once read
+      unit_only.channel_units.push_back(
+          {unit_only.unit, unit_only.dimension, unit_only.to_si, 1.0, "--unit"});
+      density_units(unit_only, args.out_unit);
+    }
   }
 
   LogPsd computed = log_psd(args.log, options, memory);
   const LoadedChannels& loaded = computed.input;
-  const DensityUnit unit = density_unit(loaded, args.out_unit);
+  const std::vector<DensityUnit> units = density_units(loaded, args.out_unit);
+  // A constant channel has no noise: its "density" is rounding residue (1e-31): said.
+  std::vector<std::string> warnings;
+  for (std::size_t c = 0; c < computed.constant_value.size(); ++c) {
+    if (!computed.constant_value[c]) continue;
+    char value[40];
+    std::snprintf(value, sizeof value, "%.9g", *computed.constant_value[c]);
+    warnings.push_back("channel " + loaded.log.channel_names[c] + " is constant (every value is " +
+                       value + "): a stuck sensor, or precision lost (e.g. a large offset stored "
+                       "as float32); its PSD and noise density are rounding residue, not noise");
+    std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+  }
 
   std::vector<PsdCurve> curves;
   std::vector<PsdCurve> plotted;  // log-binned for the plot
@@ -141,8 +162,10 @@ void run_psd(const PsdArguments& args) {
     doc["version"] = SIGMATAU_VERSION;
     doc["input"] = {{"path", loaded.log.path}, {"rate_hz", loaded.rate_hz},
                     {"kind", std::string(to_string(loaded.kind))}, {"unit", loaded.unit}};
+    doc["warnings"] = warnings;
     doc["results"] = nlohmann::json::array();
     for (std::size_t c = 0; c < curves.size(); ++c) {
+      const DensityUnit& unit = units[c];
       const auto& psd = curves[c];
       const auto& nd = densities[c];
       std::vector<double> values;
@@ -175,6 +198,7 @@ void run_psd(const PsdArguments& args) {
   } else if (args.format == "csv") {
     out << "channel,frequency_hz,psd,edf,unit\n";
     for (std::size_t c = 0; c < curves.size(); ++c) {
+      const DensityUnit& unit = units[c];
       for (std::size_t k = 0; k < curves[c].psd.size(); ++k) {
         char line[128];
         std::snprintf(line, sizeof line, "%.9g,%.9e,%.6g,", curves[c].frequency_hz[k],
@@ -186,6 +210,7 @@ void run_psd(const PsdArguments& args) {
     out << "# " << loaded.log.path << ": rate " << loaded.rate_hz << " Hz; one-sided PSD; noise density N = sqrt(two-sided level) (data-sheet/Kalibr convention), one-sided ASD = sqrt(2) N\n";
     for (std::size_t c = 0; c < curves.size(); ++c) {
       const auto& nd = densities[c];
+      const DensityUnit& unit = units[c];
       char line[256];
       std::snprintf(line, sizeof line,
                     "%-8s N = %.5g [%.5g, %.5g] %s (%.1f%%)  band %.4g-%.4g Hz%s  one-sided ASD %.5g\n",
@@ -197,6 +222,7 @@ void run_psd(const PsdArguments& args) {
     }
     if (args.bins_per_decade > 0) {
       for (std::size_t c = 0; c < curves.size(); ++c) {
+        const DensityUnit& unit = units[c];
         out << "\n# " << loaded.log.channel_names[c] << "  PSD [" << unit.psd_label << "]\n";
         for (std::size_t k = 0; k < curves[c].psd.size(); ++k) {
           char line[96];
@@ -215,10 +241,13 @@ void run_psd(const PsdArguments& args) {
   if (!args.plot.empty()) {
     SpectrumPlot plot;
     plot.title = loaded.log.path;
-    plot.y_label = "one-sided PSD [" + unit.psd_label + "]";
+    bool one_unit = true;
+    for (const auto& u : units) one_unit = one_unit && u.psd_label == units.front().psd_label;
+    plot.y_label = "one-sided PSD [" + (one_unit ? units.front().psd_label : std::string("unit per channel")) + "]";
     for (std::size_t c = 0; c < plotted.size(); ++c) {
+      const DensityUnit& unit = units[c];
       PlotCurve curve;
-      curve.name = loaded.log.channel_names[c];
+      curve.name = loaded.log.channel_names[c] + (one_unit ? "" : " [" + unit.psd_label + "]");
       curve.x = plotted[c].frequency_hz;
       for (double p : plotted[c].psd) curve.y.push_back(p * unit.psd_from_si);
       plot.curves.push_back(std::move(curve));
@@ -241,6 +270,7 @@ void add_psd_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "psd", "Welch power spectral density (one-sided) and the white-noise density read from it");
   add_log_options(*command, args->log);
+  add_sensor_unit_options(*command, args->log);
   // Checked only when given (0, the default, means "choose"): a zero or negative length used to be
   // taken silently as that default.
   command->add_option("--segment", args->segment,
@@ -270,7 +300,9 @@ void add_psd_command(CLI::App& app) {
   command->add_flag("--force", args->force, "overwrite an existing output file");
   command->add_option("--plot", args->plot, "also plot the PSD to FILE (.svg, .png or .pdf)");
   command->add_option("--out-unit", args->out_unit,
-                      "unit of the noise density, e.g. deg/s/sqrt(Hz), deg/sqrt(h), ug/sqrt(Hz)");
+                      "unit of the noise density, e.g. deg/s/sqrt(Hz), deg/sqrt(h), ug/sqrt(Hz); one per "
+                      "sensor: deg/sqrt(h),ug/sqrt(Hz) (needs --unit, --gyro-unit or --accel-unit, "
+                      "or a ROS bag)");
   command->add_option("--memory", args->memory,
                       "most samples held while the default --segment cannot be chosen yet (it "
                       "depends on the log's length); a longer file is counted first, a longer "

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "sigmatau/allan_segments.hpp"
+#include "sigmatau/data_checks.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/rate_series.hpp"
@@ -82,14 +83,27 @@ std::int64_t count_rows(const LogOptions& options) {
   return reader.timing().samples;
 }
 
+/// The value of a channel that is one run from start to end (`rows` long), from its run
+/// checks (check_runs / RunChecker); nullopt otherwise.
+std::optional<double> whole_run(const std::vector<DataWarning>& warnings, std::int64_t rows) {
+  for (const DataWarning& w : warnings) {
+    if (w.kind == DataWarningKind::stuck && w.longest_rows == rows) return w.value;
+  }
+  return std::nullopt;
+}
+
 /// The rate series of one channel, fed to its Welch accumulator with the arithmetic of the
-/// in-memory path (value x to_si, then increment x rate or (x[i+1] - x[i]) x rate).
+/// in-memory path (value x to_si, then increment x rate or (x[i+1] - x[i]) x rate). The values
+/// as read also go through a RunChecker, to tell a constant channel.
 class ChannelFeed {
  public:
-  ChannelFeed(double rate_hz, const WelchOptions& welch, DataKind kind, double to_si)
-      : accumulator_(rate_hz, welch), rates_(kind, rate_hz), to_si_(to_si) {}
+  ChannelFeed(std::string name, double rate_hz, const WelchOptions& welch, DataKind kind,
+              double to_si)
+      : accumulator_(rate_hz, welch), rates_(kind, rate_hz), to_si_(to_si), runs_(std::move(name)) {}
 
   void add(std::vector<double>& values) {
+    runs_.add(values);
+    rows_ += static_cast<std::int64_t>(values.size());
     if (to_si_ != 1.0) {
       for (double& v : values) v *= to_si_;
     }
@@ -98,10 +112,15 @@ class ChannelFeed {
 
   PsdCurve result() const { return accumulator_.result(); }
 
+  /// The value of a constant channel (as read), nullopt otherwise. Call once, at the end.
+  std::optional<double> constant_value() { return whole_run(runs_.finish(), rows_); }
+
  private:
   WelchAccumulator accumulator_;
   RateStream rates_;
   double to_si_;
+  RunChecker runs_;
+  std::int64_t rows_ = 0;
 };
 
 void check_phase_length(DataKind kind, std::int64_t rows) {
@@ -117,7 +136,13 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
   LoadedChannels& loaded = out.input;
   check_phase_length(loaded.kind, static_cast<std::int64_t>(loaded.log.channels.front().size()));
   const std::vector<std::int64_t>& starts = loaded.log.timing.segment_starts;
-  for (auto& channel : loaded.log.channels) {
+  for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
+    auto& channel = loaded.log.channels[c];
+    // The samples are in SI here (load_channels): the constant value back in the input unit.
+    auto value = whole_run(check_runs(channel, loaded.log.channel_names[c]),
+                           static_cast<std::int64_t>(channel.size()));
+    if (value) *value /= loaded.to_si;
+    out.constant_value.push_back(value);
     if (starts.size() > 1) {
       std::vector<std::vector<double>> rates;
       for (std::size_t k = 0; k < starts.size(); ++k) {
@@ -179,7 +204,7 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     fixed.segment_length = segment_length;
     feeds.reserve(channels);
     for (std::size_t c = 0; c < channels; ++c) {
-      feeds.emplace_back(input.rate_hz, fixed, kind, input.to_si);
+      feeds.emplace_back(input.log.channel_names[c], input.rate_hz, fixed, kind, input.to_si);
       feeds.back().add(held[c]);
       std::vector<double>().swap(held[c]);
     }
@@ -231,7 +256,11 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     recount = rows;
     return std::nullopt;
   }
-  for (const ChannelFeed& feed : feeds) out.curves.push_back(feed.result());
+  for (ChannelFeed& feed : feeds) {
+    out.curves.push_back(feed.result());
+    out.constant_value.push_back(feed.constant_value());
+  }
+  resolve_channel_units(args, input);
   return out;
 }
 

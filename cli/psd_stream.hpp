@@ -2,6 +2,7 @@
 // `sigmatau psd` reading: the Welch PSD of every channel of a log, fed segment by segment, so
 // that memory is bounded by the segments and not by the log's length.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "log_options.hpp"
@@ -13,6 +14,9 @@ namespace sigmatau::cli {
 struct LogPsd {
   LoadedChannels input;          ///< path, channel names, timing, rate, kind and unit (no samples)
   std::vector<PsdCurve> curves;  ///< per channel: PSD of the rate series (SI with --unit)
+  /// Per channel: its value when every sample is the same (a stuck sensor, or precision lost),
+  /// in the input unit; nullopt otherwise (runs as check_stuck finds them).
+  std::vector<std::optional<double>> constant_value;
 };
 
 /// Welch PSD (`welch`; segment_length 0 = default_segment_length of the rate series' length) of

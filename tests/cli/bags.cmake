@@ -10,13 +10,13 @@ set(bag_tests)
 add_test(NAME cli_bags_adev_same_as_csv
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
                  "-DARGS_A=adev@@${bag_dir}/imu.bag@@--topic@@/imu/data@@--format@@csv"
-                 "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--format@@csv"
+                 "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--gyro-unit@@rad/s@@--accel-unit@@m/s^2@@--format@@csv"
                  -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
 list(APPEND bag_tests cli_bags_adev_same_as_csv)
 add_test(NAME cli_bags_unindexed_same_as_csv
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
                  "-DARGS_A=adev@@${bag_dir}/imu_unindexed.bag@@--columns@@gz,ax@@--format@@csv"
-                 "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--columns@@gz,ax@@--format@@csv"
+                 "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--gyro-unit@@rad/s@@--accel-unit@@m/s^2@@--columns@@gz,ax@@--format@@csv"
                  -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
 list(APPEND bag_tests cli_bags_unindexed_same_as_csv)
 # ROS 2: MCAP (zstd, CDR LE; lz4, XCDR2 BE, no summary), SQLite .db3 and a rosbag2 folder hold
@@ -26,7 +26,7 @@ foreach(ros2 imu_zstd.mcap imu_lz4.mcap imu.db3 imu_folder)
   add_test(NAME cli_bags_${id}_same_as_csv
            COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
                    "-DARGS_A=adev@@${bag_dir}/${ros2}@@--columns@@gy,az@@--format@@csv"
-                   "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--columns@@gy,az@@--format@@csv"
+                   "-DARGS_B=adev@@${bag_dir}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--gyro-unit@@rad/s@@--accel-unit@@m/s^2@@--columns@@gy,az@@--format@@csv"
                    -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
   list(APPEND bag_tests cli_bags_${id}_same_as_csv)
 endforeach()

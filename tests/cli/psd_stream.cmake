@@ -96,12 +96,12 @@ set(bags ${CMAKE_CURRENT_BINARY_DIR}/cli_bags)
 add_test(NAME cli_psd_stream_bag_same_as_memory
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
                  "-DARGS_A=psd@@${bags}/imu.bag@@--rate@@100@@--memory@@1K@@--format@@json"
-                 "-DARGS_B=psd@@${bags}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--rate@@100@@--gaps@@fill@@--format@@json"
+                 "-DARGS_B=psd@@${bags}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--gyro-unit@@rad/s@@--accel-unit@@m/s^2@@--rate@@100@@--gaps@@fill@@--format@@json"
                  "-DDROP=\"path\"" -P ${psd_same})
 add_test(NAME cli_psd_stream_unindexed_bag_same_as_memory
          COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
                  "-DARGS_A=psd@@${bags}/imu_unindexed.bag@@--rate@@100@@--memory@@1K@@--format@@json"
-                 "-DARGS_B=psd@@${bags}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--rate@@100@@--gaps@@fill@@--format@@json"
+                 "-DARGS_B=psd@@${bags}/imu.csv@@--time-column@@t@@--time-unit@@ns@@--gyro-unit@@rad/s@@--accel-unit@@m/s^2@@--rate@@100@@--gaps@@fill@@--format@@json"
                  "-DDROP=\"path\"" -P ${psd_same})
 set_tests_properties(cli_psd_stream_bag_same_as_memory cli_psd_stream_unindexed_bag_same_as_memory
                      PROPERTIES FIXTURES_REQUIRED cli_bags)

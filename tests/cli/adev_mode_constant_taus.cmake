@@ -1,0 +1,55 @@
+# CLI cases from review D: the mode is recorded (finding 6), a constant channel is said
+# (finding 14), and an explicit --taus list is computed per statistic (finding 11).
+set(mct_white ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv)  # 2000 rows, 10 Hz
+set(mct_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_adev_mct)
+file(MAKE_DIRECTORY ${mct_dir})
+
+# Stream results are approximate at long taus: the table, the CSV and the JSON say so.
+sigmatau_cli_test(NAME cli_adev_mode_stream_table EXIT 0
+  STDOUT "^# [^\n]*\n# mode: stream \\(approximate: 8 start points per tau"
+  ARGS adev ${mct_white} --time-column t --mode stream)
+sigmatau_cli_test(NAME cli_adev_mode_stream_csv EXIT 0
+  STDOUT "^# mode: stream \\(approximate: 4 start points per tau[^\n]*\nchannel,statistic,unit"
+  ARGS adev ${mct_white} --time-column t --mode stream --density 4 --format csv)
+sigmatau_cli_test(NAME cli_adev_mode_stream_json EXIT 0
+  STDOUT "\"mode\": {\n  \"approximate\": true,\n  \"density\": 8,\n  \"name\": \"stream\""
+  ARGS adev ${mct_white} --time-column t --mode stream --format json)
+sigmatau_cli_test(NAME cli_adev_mode_exact_json EXIT 0
+  STDOUT "\"mode\": {\n  \"name\": \"exact\""
+  ARGS adev ${mct_white} --time-column t --format json)
+
+# A constant channel (gc: 300 rows of 0.123456789) next to a varying one; stamps in ms, 10 Hz.
+set(mct_const ${mct_dir}/constant_10Hz.csv)
+set(rows "t,gc,gv\n")
+foreach(i RANGE 299)
+  math(EXPR v "(${i} * 7919) % 13")
+  math(EXPR t_ms "${i} * 100")
+  string(APPEND rows "${t_ms},0.123456789,${v}\n")
+endforeach()
+file(WRITE ${mct_const} "${rows}")
+set(mct_const_re "channel gc is constant \\(every value is 0\\.123456789\\): a stuck sensor, or precision lost")
+sigmatau_cli_test(NAME cli_adev_constant_warned EXIT 0 STDERR "${mct_const_re}"
+  ARGS adev ${mct_const} --time-column t --time-unit ms)
+sigmatau_cli_test(NAME cli_adev_constant_json EXIT 0
+  STDOUT "\"warnings\": .\n  \"channel gc is constant"
+  ARGS adev ${mct_const} --time-column t --time-unit ms --format json)
+sigmatau_cli_test(NAME cli_adev_constant_stream EXIT 0
+  STDERR "channel gc is constant \\(every deviation is 0\\)"
+  ARGS adev ${mct_const} --time-column t --time-unit ms --mode stream)
+sigmatau_cli_test(NAME cli_psd_constant_warned EXIT 0
+  STDERR "${mct_const_re}.*its PSD and noise density are rounding residue"
+  ARGS psd ${mct_const} --time-column t --time-unit ms --unit deg/s)
+# The varying channel is not flagged.
+sigmatau_cli_test(NAME cli_psd_constant_only_that_channel EXIT 0 STDERR "^[^\n]*gc[^\n]*\n$"
+  ARGS psd ${mct_const} --time-column t --time-unit ms)
+
+# 2000 rate samples = 2001 phase points: OADEV and MDEV stop at m = 500 (50 s), TOTDEV at
+# m = 1000 (100 s). 80 s is computed for totdev and skipped, with a note, for the others.
+sigmatau_cli_test(NAME cli_adev_taus_per_statistic EXIT 0
+  STDOUT "gx,totdev,,8\\.000000e\\+01,800,"
+  STDERR "oadev skips tau 80 s: its longest on this log is 50 s \\(m = 500\\).*mdev skips tau 80 s"
+  ARGS adev ${mct_white} --time-column t --stat totdev,oadev,mdev --taus 10,80 --format csv)
+# A tau no statistic reaches is still an error.
+sigmatau_cli_test(NAME cli_adev_taus_none_reaches EXIT 2
+  STDERR "tau 200 s is too long for"
+  ARGS adev ${mct_white} --time-column t --stat totdev,oadev --taus 10,200)
