@@ -1,18 +1,14 @@
 // results.json -> summary.md, report.html (inline SVG) and plot files. Presentation only: every
-// number comes from results.json; units are converted for display with units.hpp.
+// number comes from results.json; units are converted for display with units.hpp. The plots are
+// built in report_plots.cpp, the helpers both share in report_common.cpp.
 #include "sigmatau/report.hpp"
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <iterator>
-#include <limits>
-#include <random>
 #include <sstream>
 
+#include "report_common.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -21,52 +17,7 @@
 namespace sigmatau {
 namespace {
 
-using nlohmann::json;
-
-/// Display units per sensor, as data sheets print them.
-struct DisplayUnits {
-  std::string deviation;  // ADEV axis
-  std::string white;      // N
-  std::string bias;       // B
-  std::string walk;       // K
-  std::string ramp;       // R
-  std::string quantization;
-  std::string psd;        // PSD axis
-  std::string density;    // noise density
-};
-
-DisplayUnits display_units(const std::string& sensor) {
-  if (sensor == "gyro") {
-    return {"deg/h", "deg/sqrt(h)", "deg/h", "deg/h/sqrt(h)", "deg/h/h", "arcsec",
-            "(deg/s)^2/Hz", "deg/s/sqrt(Hz)"};
-  }
-  if (sensor == "accel") {
-    return {"ug", "ug/sqrt(Hz)", "ug", "m/s^3/sqrt(Hz)", "m/s^3", "m/s", "(m/s^2)^2/Hz",
-            "ug/sqrt(Hz)"};
-  }
-  return {"", "", "", "", "", "", "", ""};
-}
-
-/// SI value -> value in `unit` (empty unit: unchanged).
-double in_unit(double si, const std::string& unit) {
-  if (unit.empty()) return si;
-  return si / parse_unit(unit).factor;
-}
-
-std::string fmt(double v, int digits = 4) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[48];
-  std::snprintf(b, sizeof b, "%.*g", digits, v);
-  return b;
-}
-
-/// "bias_instability" -> "bias instability" for people.
-std::string spaced(std::string s) {
-  for (char& c : s) {
-    if (c == '_') c = ' ';
-  }
-  return s;
-}
+using namespace report_detail;
 
 std::string html_escape(const std::string& s) {
   std::string out;
@@ -80,211 +31,6 @@ std::string html_escape(const std::string& s) {
     }
   }
   return out;
-}
-
-std::string read_file(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// Strips an XML prolog so an SVG can be inlined in HTML.
-std::string inline_svg(std::string svg) {
-  const auto start = svg.find("<svg");
-  return start == std::string::npos ? svg : svg.substr(start);
-}
-
-const json* find_fit(const json& results, const std::string& channel) {
-  if (!results.contains("fit") || !results["fit"].contains("channels")) return nullptr;
-  for (const auto& c : results["fit"]["channels"]) {
-    if (c.value("name", "") == channel) return &c;
-  }
-  return nullptr;
-}
-
-/// "value [low, high] unit" of a fitted parameter, or "< bound unit" for an upper bound.
-std::string parameter_text(const json& p, const std::string& unit) {
-  if (p.contains("value")) {
-    return fmt(in_unit(p["value"].get<double>(), unit)) + " [" +
-           fmt(in_unit(p["ci_low"].get<double>(), unit)) + ", " +
-           fmt(in_unit(p["ci_high"].get<double>(), unit)) + "] " + unit;
-  }
-  if (p.contains("upper_bound")) return "< " + fmt(in_unit(p["upper_bound"].get<double>(), unit), 3) + " " + unit;
-  return "";
-}
-
-struct PlotSet {
-  std::map<std::string, std::string> files;  // name -> content (in the chosen format)
-  std::map<std::string, std::string> svgs;   // name -> inline SVG
-  std::vector<std::string> warnings;
-};
-
-/// The key of the sheet's white-noise line on an ADEV plot, named after the field the line came
-/// from (the compliance item's spec_field: ARW / VRW are preferred to a noise density, as in
-/// triad_from_data_sheet), "data sheet white noise" when no item says.
-std::string white_line_name(const json& results, const std::string& sensor) {
-  if (results.contains("compliance") && results["compliance"].is_object() &&
-      results["compliance"].contains("items")) {
-    for (const auto& item : results["compliance"]["items"]) {
-      if (item.value("sensor", "") != sensor || item.value("quantity", "") != "white_noise") continue;
-      const std::string field = item.value("spec_field", "");
-      if (field == "angle_random_walk") return "data sheet ARW";
-      if (field == "velocity_random_walk") return "data sheet VRW";
-      if (field == "noise_density") return "data sheet noise density";
-    }
-  }
-  return "data sheet white noise";
-}
-
-DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
-  const DisplayUnits u = display_units(sensor);
-  DeviationPlot plot;
-  std::string statistic = "OADEV";
-  std::size_t index = 0;
-  for (const auto& channel : results["channels"]) {
-    if (channel.value("sensor", "") != sensor || channel["allan"].empty()) continue;
-    const json& curve = channel["allan"][0];
-    statistic.clear();
-    for (char c : curve.value("statistic", std::string("oadev"))) statistic += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    PlotCurve pc;
-    pc.name = channel.value("name", "?");
-    static const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c"};
-    pc.color = kColors[index % 3];
-    for (const auto& p : curve["points"]) {
-      if (p["dev"].is_null()) continue;
-      pc.x.push_back(p["tau"].get<double>());
-      pc.y.push_back(in_unit(p["dev"].get<double>(), u.deviation));
-      pc.low.push_back(p["ci_low"].is_null() ? 0.0 : in_unit(p["ci_low"].get<double>(), u.deviation));
-      pc.high.push_back(p["ci_high"].is_null() ? 0.0 : in_unit(p["ci_high"].get<double>(), u.deviation));
-    }
-    plot.curves.push_back(pc);
-    if (const json* fit = find_fit(results, pc.name); fit && fit->contains("model_adev")) {
-      const json& model = (*fit)["model_adev"];
-      PlotCurve line;
-      line.name = pc.name + " fit";
-      line.color = pc.color;
-      line.x = model["tau"].get<std::vector<double>>();
-      for (double v : model["adev"].get<std::vector<double>>()) line.y.push_back(in_unit(v, u.deviation));
-      plot.lines.push_back(line);
-      if (fit->contains("terms_adev")) {
-        for (const auto& [term, values] : (*fit)["terms_adev"].items()) {
-          PlotCurve t;
-          t.name = index == 0 ? term + " term" : "";
-          t.color = "#999999";
-          t.x = model["tau"].get<std::vector<double>>();
-          for (double v : values.get<std::vector<double>>()) t.y.push_back(in_unit(v, u.deviation));
-          plot.lines.push_back(t);
-        }
-      }
-      if (fit->contains("readouts")) {
-        PlotCurve markers;
-        markers.name = index == 0 ? "read-off points" : "";
-        markers.color = pc.color;
-        for (const auto& r : (*fit)["readouts"]) {
-          markers.x.push_back(r["tau"].get<double>());
-          markers.y.push_back(in_unit(r["adev"].get<double>(), u.deviation));
-        }
-        plot.markers.push_back(markers);
-      }
-    }
-    ++index;
-  }
-  if (results.contains("spec_lines") && results["spec_lines"].contains(sensor)) {
-    const json& lines = results["spec_lines"][sensor];
-    std::vector<double> taus;
-    if (!plot.curves.empty()) taus = {plot.curves.front().x.front(), plot.curves.front().x.back()};
-    if (lines.contains("white") && taus.size() == 2) {
-      PlotCurve l;
-      l.name = white_line_name(results, sensor);
-      l.color = "#000000";
-      const double n = lines["white"].get<double>();
-      l.x = taus;
-      for (double t : taus) l.y.push_back(in_unit(n / std::sqrt(t), u.deviation));
-      plot.lines.push_back(l);
-    }
-    if (lines.contains("bias_floor") && taus.size() == 2) {
-      PlotCurve l;
-      l.name = "data sheet bias instability";
-      l.color = "#555555";
-      const double floor = lines["bias_floor"].get<double>();
-      l.x = taus;
-      l.y = {in_unit(floor, u.deviation), in_unit(floor, u.deviation)};
-      plot.lines.push_back(l);
-    }
-  }
-  plot.title = std::string(sensor == "gyro" ? "Gyroscope" : "Accelerometer") + " " + statistic +
-               " (" + fmt(100 * results.value("confidence", 0.683), 3) + " % bands)";
-  plot.y_label = statistic + " [" + u.deviation + "]";
-  return plot;
-}
-
-SpectrumPlot spectrum_plot(const json& results, const std::string& sensor) {
-  const DisplayUnits u = display_units(sensor);
-  SpectrumPlot plot;
-  plot.title = std::string(sensor == "gyro" ? "Gyroscope" : "Accelerometer") +
-               " PSD (one-sided, Welch)";
-  plot.y_label = "PSD [" + u.psd + "]";
-  const double psd_factor = parse_unit(u.psd).factor;
-  const double density_factor = parse_unit(u.density).factor;
-  std::size_t index = 0;
-  for (const auto& channel : results["channels"]) {
-    if (channel.value("sensor", "") != sensor || !channel.contains("psd")) continue;
-    const json& psd = channel["psd"];
-    static const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c"};
-    PlotCurve pc;
-    pc.name = channel.value("name", "?");
-    pc.color = kColors[index % 3];
-    pc.x = psd["frequency"].get<std::vector<double>>();
-    for (double v : psd["psd"].get<std::vector<double>>()) pc.y.push_back(v / psd_factor);
-    plot.curves.push_back(pc);
-    if (psd.contains("noise_density")) {
-      const json& nd = psd["noise_density"];
-      const double level = std::pow(nd["one_sided_asd"].get<double>(), 2) / psd_factor;
-      PlotCurve line;
-      line.name = pc.name + " N = " + fmt(nd["value"].get<double>() / density_factor, 3) + " " + u.density;
-      line.color = pc.color;
-      line.x = nd["band_hz"].get<std::vector<double>>();
-      line.y = {level, level};
-      plot.lines.push_back(line);
-    }
-    ++index;
-  }
-  if (results.contains("spec_lines") && results["spec_lines"].contains(sensor) &&
-      results["spec_lines"][sensor].contains("white") && !plot.curves.empty()) {
-    const double n = results["spec_lines"][sensor]["white"].get<double>();
-    PlotCurve line;
-    line.name = "data sheet (one-sided level 2 N^2)";
-    line.color = "#000000";
-    line.x = {plot.curves.front().x.front(), plot.curves.front().x.back()};
-    line.y = {2 * n * n / psd_factor, 2 * n * n / psd_factor};
-    plot.lines.push_back(line);
-  }
-  return plot;
-}
-
-/// Dynamic ADEV: one curve per time window of one channel, coloured from early (blue) to late
-/// (red), so a change of the noise during the run shows as curves that do not coincide.
-DeviationPlot dynamic_plot(const json& channel) {
-  const DisplayUnits u = display_units(channel.value("sensor", ""));
-  DeviationPlot plot;
-  plot.title = "Dynamic OADEV of " + channel.value("name", std::string("?")) + " (windows of " +
-               fmt(channel["dynamic"].value("window_s", 0.0) / 60.0, 3) + " min)";
-  plot.y_label = "OADEV [" + (u.deviation.empty() ? std::string("SI") : u.deviation) + "]";
-  const auto& windows = channel["dynamic"]["windows"];
-  const std::size_t n = windows.size();
-  for (std::size_t w = 0; w < n; ++w) {
-    PlotCurve c;
-    c.name = fmt(windows[w]["start_s"].get<double>() / 60.0, 3) + "-" +
-             fmt(windows[w]["end_s"].get<double>() / 60.0, 3) + " min";
-    const double f = n > 1 ? static_cast<double>(w) / static_cast<double>(n - 1) : 0.0;
-    char color[8];
-    std::snprintf(color, sizeof color, "#%02x%02x%02x", static_cast<int>(40 + 200 * f), 60,
-                  static_cast<int>(240 - 200 * f));
-    c.color = color;
-    c.x = windows[w]["tau"].get<std::vector<double>>();
-    for (double v : windows[w]["oadev"].get<std::vector<double>>()) c.y.push_back(in_unit(v, u.deviation));
-    plot.curves.push_back(c);
-  }
-  return plot;
 }
 
 /// True when some checked compliance item was judged against a typical value (no max printed).
@@ -305,22 +51,13 @@ std::string verdict_rule(const json& results) {
          std::string(kGateConfidenceNote);
 }
 
-/// A number of a compliance item, NaN when absent or null (JSON has no NaN).
-double item_number(const json& item, const char* key) {
-  if (!item.contains(key) || !item[key].is_number()) return std::numeric_limits<double>::quiet_NaN();
-  return item[key].get<double>();
-}
-
-/// True when the item's term was not detected (only an upper bound; older files lack the key).
-bool undetected(const json& item) { return !item.value("detected", true); }
-
-/// Said under a compliance table with an inconclusive item.
 /// Under the summary table: B beside the floor a data sheet prints (a STIM300 at its typical
 /// 0.5 deg/h fits as B = 0.75 deg/h, which read as 50 % over the sheet).
 constexpr const char* kBiasFloorNote =
     "B is the bias-instability coefficient; data sheets print its ADEV floor 0.664 B as the bias "
     "stability, and the compliance rows compare that floor.";
 
+/// Said under a compliance table with an inconclusive item.
 constexpr const char* kInconclusiveNote =
     "Inconclusive: the fit did not detect the term, and its upper bound exceeds the limit, so "
     "this log can neither pass nor fail it; a longer log bounds it more tightly. A term not "
@@ -345,16 +82,6 @@ std::string limit_cell(const json& item) {
   return text + (scaled.empty() ? "" : " " + scaled) + kind;
 }
 
-/// The "measured / limit" cell of the compliance tables.
-/// "gyro white noise x": the row's name. An accelerometer's K and R are named after
-/// acceleration (IEEE 1293), as in `fit`, not "rate random walk".
-std::string item_label(const json& item) {
-  const std::string sensor = item.value("sensor", "");
-  std::string quantity = spaced(item.value("quantity", ""));
-  if (sensor == "accel" && quantity.rfind("rate ", 0) == 0) quantity = "acceleration " + quantity.substr(5);
-  return sensor + " " + quantity + " " + item.value("axis", "");
-}
-
 /// A term the fit measured but the sheet does not print: its value and interval in the usual
 /// data-sheet unit (the row used to be empty).
 std::string unspecified_measurement(const json& item) {
@@ -374,95 +101,11 @@ std::string unspecified_measurement(const json& item) {
   return text + (unit.empty() ? " (SI)" : " " + unit) + " measured; the sheet prints no limit";
 }
 
+/// The "measured / limit" cell of the compliance tables.
 std::string margin_cell(const json& item) {
   if (item.value("verdict", "") == "not specified") return "";
   if (undetected(item)) return "not detected (upper bound only)";
   return item.contains("margin") ? format_ratio(item_number(item, "margin")) : "";
-}
-
-CompliancePlot compliance_plot(const json& results) {
-  CompliancePlot plot;
-  plot.title = "Compliance with " + results["compliance"]["spec"].value("part", std::string("data sheet"));
-  for (const auto& item : results["compliance"]["items"]) {
-    const std::string verdict = item.value("verdict", "");
-    if (verdict == "not specified") continue;
-    ComplianceRow row;
-    row.label = item_label(item);
-    row.verdict = verdict;
-    if (undetected(item)) {
-      // Only a bound: one point at bound / limit, said so in the label.
-      row.ratio = row.ratio_low = row.ratio_high = item_number(item, "margin_upper");
-      row.label += " (not detected)";
-      if (std::isfinite(row.ratio)) plot.rows.push_back(row);  // no bound, nothing to draw
-      continue;
-    }
-    row.ratio = item["margin"].get<double>();
-    row.ratio_high = item["margin_upper"].get<double>();
-    const double value = item["value"].get<double>();
-    const double low = item["ci_low"].get<double>();
-    row.ratio_low = value != 0 ? row.ratio * std::abs(low / value) : row.ratio;
-    if (row.ratio_low > row.ratio) row.ratio_low = row.ratio;
-    plot.rows.push_back(row);
-  }
-  return plot;
-}
-
-/// Renders every plot twice when needed: SVG for the HTML, and the requested file format.
-PlotSet render_plots(const json& results, const ReportOptions& options) {
-  PlotSet set;
-  if (!options.plots) return set;
-  if (!gnuplot_available()) {
-    set.warnings.push_back("gnuplot not found: plots left out (install it with: apt-get install gnuplot-nox)");
-    return set;
-  }
-  char pattern[] = "/tmp/sigmatau-report-XXXXXX";
-  if (!::mkdtemp(pattern)) throw Error("cannot create a temporary directory for plots");
-  const std::filesystem::path scratch = pattern;
-  const std::string ext = options.plot_format == PlotFormat::svg   ? ".svg"
-                          : options.plot_format == PlotFormat::png ? ".png"
-                                                                   : ".pdf";
-  auto render = [&](const std::string& name, auto&& draw) {
-    try {
-      draw(scratch / (name + ".svg"));
-      set.svgs[name] = inline_svg(read_file(scratch / (name + ".svg")));
-      if (options.plot_format == PlotFormat::svg) {
-        set.files[name + ext] = read_file(scratch / (name + ".svg"));
-      } else {
-        draw(scratch / (name + ext));
-        set.files[name + ext] = read_file(scratch / (name + ext));
-      }
-    } catch (const Error& e) {
-      set.warnings.push_back("plot " + name + " failed: " + e.what());
-    }
-  };
-  for (const std::string sensor : {"gyro", "accel"}) {
-    bool present = false;
-    for (const auto& c : results["channels"]) present = present || c.value("sensor", "") == sensor;
-    if (!present) continue;
-    const DeviationPlot adev = deviation_plot(results, sensor);
-    if (!adev.curves.empty()) {
-      render("adev_" + sensor, [&](const std::filesystem::path& p) { render_deviation_plot(adev, p, true); });
-    }
-    const SpectrumPlot psd = spectrum_plot(results, sensor);
-    if (!psd.curves.empty()) {
-      render("psd_" + sensor, [&](const std::filesystem::path& p) { render_spectrum_plot(psd, p, true); });
-    }
-  }
-  for (const auto& channel : results["channels"]) {
-    if (!channel.contains("dynamic") || channel["dynamic"]["windows"].empty()) continue;
-    const DeviationPlot plot = dynamic_plot(channel);
-    render("dynamic_" + channel.value("name", std::string("channel")),
-           [&](const std::filesystem::path& p) { render_deviation_plot(plot, p, true); });
-  }
-  if (results.contains("compliance") && !results["compliance"].is_null()) {
-    const CompliancePlot chart = compliance_plot(results);
-    if (!chart.rows.empty()) {
-      render("compliance", [&](const std::filesystem::path& p) { render_compliance_plot(chart, p, true); });
-    }
-  }
-  std::error_code ec;
-  std::filesystem::remove_all(scratch, ec);
-  return set;
 }
 
 std::string verdict_class(const std::string& verdict) {
