@@ -14,6 +14,7 @@
 #include "bag_backend_checks.hpp"
 #include "ros2_bag_writer.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/log_reader.hpp"
 #include "temp_dir.hpp"
 #include "test_support.hpp"
 
@@ -390,4 +391,147 @@ TEST_CASE("MCAP an empty chunk (no records) is skipped") {
   std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
   auto bag = detail::open_mcap(p.string());
   check_same(read_all(*bag, "/imu/data"), topics[0].values);
+}
+
+// --- A recording cut short (its recorder died) under LogOptions::truncated -------------------
+
+namespace {
+
+/// The six channels of `got` equal the first `n` messages of `want`, bit for bit.
+void check_prefix(const Log& got, const std::vector<ImuValue>& want, std::size_t n) {
+  REQUIRE(got.channels.size() == 6);
+  REQUIRE(got.channels[0].size() == n);
+  for (std::size_t i = 0; i < n; ++i) {
+    INFO("message " << i);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(got.channels[static_cast<std::size_t>(k)][i] == want[i].gyro[k]);
+      CHECK(got.channels[static_cast<std::size_t>(k) + 3][i] == want[i].accel[k]);
+    }
+  }
+}
+
+LogOptions cut_options(const fs::path& p, TruncatedPolicy policy, const std::string& topic) {
+  LogOptions o;
+  o.path = p.string();
+  o.topic = topic;
+  o.truncated = policy;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("MCAP cut short inside a message: an error naming the cut and the count, or used") {
+  TempDir dir;
+  Ros2Topic imu;
+  imu.values = test::make_imu_values(500, 31);
+  McapOptions o = options("", false, false);
+  o.chunked = false;
+  const fs::path p = dir.file("cut.mcap");
+  const auto layout = test::write_mcap(p, {imu}, o);
+  const std::size_t k = 321;  // the file ends 30 bytes into message k's record
+  const std::int64_t cut = layout.message_offsets.at(k);
+  fs::resize_file(p, static_cast<std::uintmax_t>(cut + 30));
+  // Without --topic the topic scan meets the cut first; with it, the read does.
+  for (const std::string topic : {"", "/imu/data"}) {
+    CAPTURE(topic);
+    const std::string msg = parse_error_of(
+        [&] { read_log(cut_options(p, TruncatedPolicy::error, topic)); });
+    CHECK(msg.find("cut short at byte " + std::to_string(cut) + " after " + std::to_string(k) +
+                   " complete messages of /imu/data") != std::string::npos);
+    CHECK(msg.find("truncated record at byte offset " + std::to_string(cut)) != std::string::npos);
+    CHECK(msg.find("--truncated use") != std::string::npos);
+
+    const Log log = read_log(cut_options(p, TruncatedPolicy::use, topic));
+    check_prefix(log, imu.values, k);
+    CHECK(log.timing.samples == static_cast<std::int64_t>(k));
+    CHECK(log.timing.truncated_at_byte == cut);
+    CHECK(log.timing.truncated_file == p.string());
+  }
+}
+
+TEST_CASE("MCAP cut short inside its last chunk: the messages of the complete chunks are used") {
+  TempDir dir;
+  Ros2Topic imu;
+  imu.values = test::make_imu_values(400, 32);
+  const fs::path p = dir.file("cut.mcap");
+  const auto layout = test::write_mcap(p, {imu}, options("zstd", false, false));
+  REQUIRE(layout.chunk_offsets.size() == 10);  // 40 messages per chunk
+  const std::int64_t last = layout.chunk_offsets.back();
+  fs::resize_file(p, static_cast<std::uintmax_t>(last + 100));
+  SUBCASE("the backend after allow_cut") {
+    auto bag = detail::open_mcap(p.string());
+    bag->allow_cut();
+    const auto got = read_all(*bag, "/imu/data");
+    check_same(got, std::vector<ImuValue>(imu.values.begin(), imu.values.begin() + 360));
+    CHECK(bag->cut().at_byte == last);
+    CHECK(bag->cut().detail.find("truncated record at byte offset " + std::to_string(last)) !=
+          std::string::npos);
+  }
+  SUBCASE("LogReader under TruncatedPolicy::use") {
+    const Log log = read_log(cut_options(p, TruncatedPolicy::use, ""));
+    check_prefix(log, imu.values, 360);
+    CHECK(log.timing.truncated_at_byte == last);
+  }
+  SUBCASE("the same file ending at a chunk boundary is complete, not cut") {
+    fs::resize_file(p, static_cast<std::uintmax_t>(last));
+    const Log log = read_log(cut_options(p, TruncatedPolicy::error, ""));
+    check_prefix(log, imu.values, 360);
+    CHECK(log.timing.truncated_at_byte == -1);
+  }
+}
+
+TEST_CASE("MCAP with a footer whose record runs past the data is corrupt even under use") {
+  TempDir dir;
+  Ros2Topic imu;
+  imu.values = test::make_imu_values(200, 33);
+  const fs::path p = dir.file("bad.mcap");
+  const auto layout = test::write_mcap(p, {imu}, options("lz4", false, true));
+  const std::int64_t chunk = layout.chunk_offsets.at(2);
+  // A plausible length (1 MiB, under the chunk limit) that runs past the end of the data section:
+  // with a footer the file is complete, so this is a corrupt length, not a cut.
+  patch(p, chunk + 1, le64(std::uint64_t{1} << 20));
+  const std::string msg = parse_error_of(
+      [&] { read_log(cut_options(p, TruncatedPolicy::use, "/imu/data")); });
+  CHECK(msg.find("corrupt record at byte offset " + std::to_string(chunk)) != std::string::npos);
+  CHECK(msg.find("cut short") == std::string::npos);
+}
+
+TEST_CASE("rosbag2 folder of MCAP files: the last file cut short is used, an earlier one is not") {
+  TempDir dir;
+  Ros2Topic imu;
+  imu.values = test::make_imu_values(400, 34);
+  const fs::path folder = dir.file("rec");
+  test::write_rosbag2_folder(folder, "mcap", {imu}, 2);
+  const fs::path first = folder / "rec_0.mcap";
+  const fs::path last = folder / "rec_1.mcap";
+  REQUIRE(fs::is_regular_file(first));
+  REQUIRE(fs::is_regular_file(last));
+  // Each file holds 200 messages in 5 uncompressed chunks of 40, so both have the layout of a
+  // rewrite of the last one: its last chunk's offset is where the cuts go.
+  Ros2Topic part;
+  part.values.assign(imu.values.begin() + 200, imu.values.end());
+  const fs::path copy = dir.file("copy.mcap");
+  const auto layout = test::write_mcap(copy, {part});
+  REQUIRE(layout.chunk_offsets.size() == 5);
+  REQUIRE(fs::file_size(copy) == fs::file_size(last));
+  const std::int64_t cut = layout.chunk_offsets.back();
+  SUBCASE("the last file cut inside its last chunk") {
+    fs::resize_file(last, static_cast<std::uintmax_t>(cut + 50));
+    const std::string msg = parse_error_of(
+        [&] { read_log(cut_options(folder, TruncatedPolicy::error, "")); });
+    CHECK(msg.find("rec_1.mcap") != std::string::npos);
+    CHECK(msg.find("cut short at byte " + std::to_string(cut) + " after 360 complete messages") !=
+          std::string::npos);
+    const Log log = read_log(cut_options(folder, TruncatedPolicy::use, ""));
+    check_prefix(log, imu.values, 360);
+    CHECK(log.timing.truncated_at_byte == cut);
+    CHECK(log.timing.truncated_file == last.string());
+  }
+  SUBCASE("the first file cut: corrupt, since a later file follows") {
+    fs::resize_file(first, static_cast<std::uintmax_t>(cut + 50));
+    const std::string msg = parse_error_of(
+        [&] { read_log(cut_options(folder, TruncatedPolicy::use, "")); });
+    CHECK(msg.find("rec_0.mcap") != std::string::npos);
+    CHECK(msg.find("a file before the last of the recording") != std::string::npos);
+  }
 }

@@ -538,3 +538,88 @@ TEST_CASE("a topic of another type, or a message that is no Imu, is a ParseError
     CHECK(e.find("40-byte message on /imu/data is not a sensor_msgs/Imu") != std::string::npos);
   }
 }
+
+// --- A recording cut short (its recorder died) under LogOptions::truncated -------------------
+
+namespace {
+
+LogOptions cut_options(const std::string& path, TruncatedPolicy policy, const std::string& topic) {
+  LogOptions o;
+  o.path = path;
+  o.topic = topic;
+  o.truncated = policy;
+  return o;
+}
+
+std::vector<Ros1Imu> first(const std::vector<Ros1Imu>& m, std::size_t n) {
+  return {m.begin(), m.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+
+}  // namespace
+
+TEST_CASE("an unindexed bag cut inside an uncompressed chunk: its complete messages are used") {
+  TempDir dir;
+  const std::string path = dir.file("crash.bag");
+  const auto m = make_messages(1500, 21);
+  // 32 KiB chunks (about 80 messages): the cut falls inside a chunk, as rosbag's default
+  // uncompressed 768 KiB chunks would be cut by a crash.
+  const auto w = write_bag(path, m, opts(Compression::none, false, 32 * 1024));
+  REQUIRE(w.chunks.size() > 10);
+  const std::size_t k = 1234;
+  const std::int64_t record = w.offsets.at(k);  // the record of Imu message k in the file
+  const std::string bytes = read_bytes(path);
+  // Cut 20 bytes into message k's record, or exactly at its start (the chunk's data then ends
+  // with a complete record, yet the chunk is still cut short).
+  for (const std::int64_t into : {std::int64_t{20}, std::int64_t{0}}) {
+    CAPTURE(into);
+    write_bytes(path, bytes.substr(0, static_cast<std::size_t>(record + into)));
+    for (const std::string topic : {"", "/imu/data"}) {
+      CAPTURE(topic);
+      const std::string e = error_of(cut_options(path, TruncatedPolicy::error, topic));
+      CHECK(e.find("cut short at byte " + std::to_string(record) + " after " + std::to_string(k) +
+                   " complete messages of /imu/data") != std::string::npos);
+      CHECK(e.find("--truncated use") != std::string::npos);
+      const Log log = read_log(cut_options(path, TruncatedPolicy::use, topic));
+      check_values(log, first(m, k));
+      CHECK(log.timing.truncated_at_byte == record);
+      CHECK(log.timing.truncated_file == path);
+    }
+  }
+}
+
+TEST_CASE("a bag cut inside a compressed chunk: the messages of the chunks before are used") {
+  TempDir dir;
+  const std::string path = dir.file("cut.bag");
+  const auto m = make_messages(600, 22);
+  // Indexed when written: the cut takes the index away, as a crash leaves index_pos unset.
+  const auto w = write_bag(path, m, opts(Compression::bz2, true, 16 * 1024));
+  REQUIRE(w.chunks.size() > 3);
+  const std::int64_t chunk = w.chunks[2];
+  write_bytes(path, read_bytes(path).substr(0, static_cast<std::size_t>(chunk) + 100));
+  const Log log = read_log(cut_options(path, TruncatedPolicy::use, ""));
+  const auto n = static_cast<std::size_t>(log.timing.samples);
+  CHECK(n > 0);
+  CHECK(n < m.size());
+  check_values(log, first(m, n));
+  CHECK(log.timing.truncated_at_byte == chunk);
+  // The default names the same cut and the same count.
+  const std::string e = error_of(cut_options(path, TruncatedPolicy::error, ""));
+  CHECK(e.find("cut short at byte " + std::to_string(chunk) + " after " + std::to_string(n) +
+               " complete messages of /imu/data") != std::string::npos);
+}
+
+TEST_CASE("an indexed bag whose chunk runs past the end of the file is corrupt even under use") {
+  TempDir dir;
+  const std::string path = dir.file("bad.bag");
+  const auto w = write_bag(path, make_messages(600, 23), opts(Compression::none, true, 16 * 1024));
+  const std::int64_t chunk = w.chunks.at(1);
+  std::string bytes = read_bytes(path);
+  std::uint32_t header_len = 0;
+  std::memcpy(&header_len, bytes.data() + chunk, 4);
+  const std::uint32_t past_end = static_cast<std::uint32_t>(bytes.size());  // a plausible size
+  std::memcpy(bytes.data() + chunk + 4 + header_len, &past_end, 4);
+  write_bytes(path, bytes);
+  const std::string e = error_of(cut_options(path, TruncatedPolicy::use, "/imu/data"));
+  CHECK(e.find("truncated record at byte offset " + std::to_string(chunk)) != std::string::npos);
+  CHECK(e.find("--truncated use") == std::string::npos);
+}

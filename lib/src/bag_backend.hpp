@@ -19,10 +19,25 @@ inline bool is_imu_type(std::string_view type) {
   return type == kRos1ImuType || type == kRos2ImuType;
 }
 
+/// Where a recording was cut short: a file without an index or summary (its recorder died:
+/// a crash, a full disk, Ctrl-C) that ends inside a record.
+struct BagCut {
+  std::string file;           ///< the file cut (one of a rosbag2 folder's files)
+  std::int64_t at_byte = -1;  ///< byte offset of the first incomplete record; -1: not cut
+  std::string detail;         ///< "truncated record at byte offset ...: ..." (what is missing)
+};
+
 /// One bag file (or a rosbag2 folder of them) delivering the IMU messages of one topic.
 class BagBackend {
  public:
   virtual ~BagBackend() = default;
+  /// From now on a recording cut short ends topics() and next() as a normal end would, after
+  /// the complete records before the cut, and cut() says where. Without it (the default) a cut
+  /// is a ParseError naming the record. A record running past the end of a file that has an
+  /// index, summary or footer is corruption and stays a ParseError either way.
+  virtual void allow_cut() { cut_allowed_ = true; }
+  /// The cut met so far (at_byte -1 when none).
+  virtual const BagCut& cut() const { return cut_; }
   /// The topics in the bag with their types; message counts when the bag states them, or when
   /// `need_counts` (which may read the whole bag), else -1.
   virtual std::vector<BagTopic> topics(bool need_counts) = 0;
@@ -34,6 +49,14 @@ class BagBackend {
   virtual bool next(ImuSample& sample) = 0;
   virtual std::int64_t bytes_read() const = 0;
   virtual std::int64_t total_bytes() const = 0;
+
+ protected:
+  /// A backend met a cut at `at_byte` of `file`: records it when allowed, else throws
+  /// ParseError "<detail> (the recording was cut short, or the length is corrupt)".
+  void cut_short(const std::string& file, std::int64_t at_byte, const std::string& detail);
+
+  bool cut_allowed_ = false;
+  BagCut cut_;
 };
 
 std::unique_ptr<BagBackend> open_ros1_bag(const std::string& path);

@@ -110,6 +110,14 @@ std::unique_ptr<BagBackend> open_bag(const std::string& path) {
                      "or .db3 extension, not a folder with metadata.yaml)");
 }
 
+void BagBackend::cut_short(const std::string& file, std::int64_t at_byte,
+                           const std::string& detail) {
+  if (!cut_allowed_) {
+    throw ParseError(file, 0, 0, detail + " (the recording was cut short, or the length is corrupt)");
+  }
+  cut_ = BagCut{file, at_byte, detail};
+}
+
 void add_topic(std::vector<BagTopic>& list, const std::string& name, const std::string& type,
                std::int64_t messages, bool with_counts) {
   auto it = std::find_if(list.begin(), list.end(), [&](const BagTopic& t) { return t.name == name; });
@@ -151,7 +159,11 @@ void sort_topics(std::vector<BagTopic>& list) {
 }
 
 BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
-    : file_(options.path), timing_(timing), nonfinite_(options.nonfinite), stamp_(options.stamp) {
+    : file_(options.path),
+      timing_(timing),
+      nonfinite_(options.nonfinite),
+      stamp_(options.stamp),
+      truncated_(options.truncated) {
   if (!options.time_column.empty()) {
     throw Error(file_ + ": a ROS bag has its own time stamps; drop the time column (\"" +
                 options.time_column + "\") and choose the stamp with --stamp header|receive");
@@ -188,6 +200,7 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
   selection_.has_time = true;
 
   backend_ = open_bag(file_);
+  backend_->allow_cut();  // check_cut applies the policy, with the topic's count in the message
   topic_ = options.topic;
   if (topic_.empty()) {
     const std::vector<BagTopic> topics = backend_->topics(false);
@@ -209,8 +222,28 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
     throw Error(file_ + ": no topic " + topic_ + " in the bag; its topics: " +
                 topic_list(backend_->topics(true)));
   }
+  if (backend_->cut().at_byte >= 0) {  // met by a counting scan: the counts are of the prefix
+    std::int64_t complete = -1;
+    for (const BagTopic& t : backend_->topics(false)) {
+      if (t.name == topic_) complete = t.messages;
+    }
+    check_cut(complete);
+  }
   timing_.set_policy(options.gaps, file_);
   timing_.start(true, TimeUnit::ns);
+}
+
+void BagLog::check_cut(std::int64_t complete) const {
+  const BagCut& cut = backend_->cut();
+  if (cut.at_byte < 0 || truncated_ == TruncatedPolicy::use) return;
+  throw ParseError(cut.file, 0, 0,
+                   "the recording was cut short at byte " + std::to_string(cut.at_byte) +
+                       (complete >= 0 ? " after " + std::to_string(complete) +
+                                            " complete message" + (complete == 1 ? "" : "s") +
+                                            " of " + topic_
+                                      : std::string()) +
+                       " (its recorder stopped without closing the file: " + cut.detail +
+                       "); give --truncated use to analyse the complete messages before it");
 }
 
 BagLog::~BagLog() = default;
@@ -252,6 +285,7 @@ bool BagLog::pull(ImuSample& out) {
     ImuSample in;
     if (!backend_->next(in)) {
       eof_ = true;
+      check_cut(static_cast<std::int64_t>(seq_));
       break;
     }
     admit(in);

@@ -46,6 +46,9 @@ class BagLog {
 
   std::int64_t reordered_samples() const { return reordered_; }
   double max_reorder_s() const { return static_cast<double>(max_reorder_ns_) / 1e9; }
+  /// Where the recording was cut short (at_byte -1 when it was not, or not yet met); only
+  /// under TruncatedPolicy::use, as the other policy throws.
+  const BagCut& cut() const { return backend_->cut(); }
   std::int64_t bytes_read() const { return backend_->bytes_read(); }
   std::int64_t total_bytes() const { return backend_->total_bytes(); }
 
@@ -59,12 +62,16 @@ class BagLog {
   void admit(const ImuSample& in);
   std::int64_t key(const ImuSample& s) const;
   [[noreturn]] void fail_nonfinite(const ImuSample& s) const;
+  /// Under TruncatedPolicy::error, a cut met by the backend is a ParseError naming it, with the
+  /// `complete` messages of the topic before it (-1: not known) and how to use them.
+  void check_cut(std::int64_t complete) const;
 
   std::string file_;
   std::unique_ptr<BagBackend> backend_;
   TimingAccumulator& timing_;
   NonFinitePolicy nonfinite_;
   BagStamp stamp_;
+  TruncatedPolicy truncated_;
   std::string topic_;
   std::vector<BagTopic> listed_;
   ColumnSelection selection_;

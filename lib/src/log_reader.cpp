@@ -38,6 +38,12 @@ BinaryFormat parse_binary_format(std::string_view text) {
               "\" (expected i16, i32, f32 or f64)");
 }
 
+TruncatedPolicy parse_truncated_policy(std::string_view text) {
+  if (text == "error") return TruncatedPolicy::error;
+  if (text == "use") return TruncatedPolicy::use;
+  throw Error("unknown --truncated value \"" + std::string(text) + "\" (expected error or use)");
+}
+
 struct LogReader::Impl {
   std::unique_ptr<detail::ByteSource> source;  // text and binary input
   detail::TimingAccumulator timing;
@@ -116,6 +122,11 @@ const TimingReport& LogReader::timing() const {
       impl_->report.max_reorder_s = impl_->bag->max_reorder_s();
       impl_->report.bag_topic = impl_->bag->topic();
       impl_->report.bag_topics = impl_->bag->topics_listed();
+      const detail::BagCut& cut = impl_->bag->cut();
+      if (cut.at_byte >= 0) {
+        impl_->report.truncated_at_byte = cut.at_byte;
+        impl_->report.truncated_file = cut.file;
+      }
     }
     impl_->report_stale = false;
   }

@@ -21,8 +21,11 @@
 // chunk holds, so chunks without the selected topic are skipped without decompressing them.
 // A file whose writer crashed has no summary and no footer: it is read by the same walk; when it
 // ends exactly at a record boundary it ends cleanly (every record in it is complete), when it ends
-// inside a record the messages before that record are delivered and then a ParseError names the
-// record's byte offset and says the recording was cut short.
+// inside a record the messages before that record are delivered and then the cut is reported
+// (BagBackend::cut_short: a ParseError naming the record's byte offset, or, after allow_cut(), a
+// normal end with cut() saying where). The messages of a chunk cut short are not used (a chunk
+// is compressed as a whole). A file with a footer whose record runs past the data section is
+// corrupt, never cut: always a ParseError.
 #include <algorithm>
 #include <unordered_map>
 
@@ -112,7 +115,10 @@ class McapFile final : public BagBackend {
     }
     const std::uint64_t len = load_le64(h + 1);
     data_start_ = static_cast<std::int64_t>(sizeof kMagic) + kPrefixBytes;
-    if (len > static_cast<std::uint64_t>(file_.size() - data_start_)) truncated_record(8, len);
+    if (len > static_cast<std::uint64_t>(file_.size() - data_start_)) {
+      throw ParseError(file_.name(), 0, 0,
+                       truncated_detail(8, len) + " (the file ends inside its header record)");
+    }
     data_start_ += static_cast<std::int64_t>(len);
     scan_end_ = file_.size();
     read_summary();
@@ -161,16 +167,11 @@ class McapFile final : public BagBackend {
     throw ParseError(file_.name(), 0, 0, "corrupt record at " + at_offset(pos) + ": " + why);
   }
 
-  [[noreturn]] void truncated_record(std::int64_t pos, std::uint64_t len) const {
-    throw ParseError(file_.name(), 0, 0,
-                     "truncated record at " + at_offset(pos) + ": its content needs " +
-                         std::to_string(len) + " bytes from byte " +
-                         std::to_string(pos + kPrefixBytes) + ", the file ends at byte " +
-                         std::to_string(file_.size()) +
-                         (has_footer_ ? std::string(" (a corrupt record length)")
-                                      : std::string(" (the recording was cut short, or the "
-                                                    "length is corrupt; the messages before this "
-                                                    "record were read)")));
+  /// "truncated record at byte offset <pos>: its content needs <len> bytes from byte ...".
+  std::string truncated_detail(std::int64_t pos, std::uint64_t len) const {
+    return "truncated record at " + at_offset(pos) + ": its content needs " + std::to_string(len) +
+           " bytes from byte " + std::to_string(pos + kPrefixBytes) + ", the file ends at byte " +
+           std::to_string(file_.size());
   }
 
   /// Reads the footer and, when it points to one, the summary section.
@@ -363,19 +364,27 @@ class McapFile final : public BagBackend {
     in_chunk_ = 0;
     if (pos_ >= scan_end_) return false;
     const std::int64_t pos = pos_;
-    if (file_.size() - pos < kPrefixBytes) {
-      throw ParseError(file_.name(), 0, 0,
-                       "truncated record at " + at_offset(pos) + ": " +
-                           std::to_string(file_.size() - pos) +
-                           " bytes remain, less than an opcode and a length (the recording was "
-                           "cut short; the messages before this record were read)");
+    if (file_.size() - pos < kPrefixBytes) {  // only without a footer (it is 37 bytes)
+      cut_short(file_.name(), pos,
+                "truncated record at " + at_offset(pos) + ": " +
+                    std::to_string(file_.size() - pos) +
+                    " bytes remain, less than an opcode and a length");
+      pos_ = scan_end_;
+      return false;
     }
+    const std::int64_t body = pos + kPrefixBytes;
+    if (body > scan_end_) bad_record(pos, "record prefix runs past the end of the data section");
     const char* prefix = file_.view(pos, kPrefixBytes, "record");
     const auto op = static_cast<unsigned char>(prefix[0]);
     const std::uint64_t len = load_le64(prefix + 1);
-    const std::int64_t body = pos + kPrefixBytes;
     if (len > static_cast<std::uint64_t>(scan_end_ - body)) {
-      if (scan_end_ == file_.size()) truncated_record(pos, len);
+      // Without a footer scan_end_ is the end of the file: the recording was cut here, unless
+      // the length is beyond any record (a corrupt length, not a cut).
+      if (!has_footer_ && len <= kMaxBagChunkBytes) {
+        cut_short(file_.name(), pos, truncated_detail(pos, len));
+        pos_ = scan_end_;
+        return false;
+      }
       bad_record(pos, "content of " + std::to_string(len) +
                           " bytes runs past the end of the data section at byte " +
                           std::to_string(scan_end_));

@@ -9,7 +9,12 @@
 // messages u32)), 0x07 connection (conn, topic; data: the connection header, fields type,
 // md5sum, message_definition, ...). A time is sec u32 then nsec u32.
 // The index (connections and chunk infos at index_pos) is used when present. A bag whose
-// recorder crashed has index_pos 0: it is read by a sequential scan of its chunks.
+// recorder crashed has index_pos 0 (or one past its end): it is read by a sequential scan of its
+// chunks. When such a bag ends inside a record, the recording was cut short: the records before
+// the cut are read, and so are the complete messages of an uncompressed chunk the file ends
+// inside (rosbag's default); a compressed chunk cut short is not used. The cut is reported by
+// BagBackend::cut_short at the first incomplete record. An indexed bag ending inside a record is
+// corrupt (rosbag writes index_pos last, when the bag is closed): always a ParseError.
 #include <algorithm>
 #include <unordered_map>
 
@@ -182,24 +187,51 @@ class Ros1Bag final : public BagBackend {
   std::int64_t total_bytes() const override { return file_.size(); }
 
  private:
-  /// Reads the header of the record at `pos`: its fields, where its data starts and how long it is.
-  void read_header(std::int64_t pos, Fields& f, std::int64_t& data_at, std::uint32_t& data_len) {
+  /// Reads the header of the record at `pos`: its fields, where its data starts and how long it
+  /// is. With `may_cut` (an unindexed bag) a file ending inside the record is a cut: false after
+  /// cut_short, except for an uncompressed chunk whose data alone is cut (true, `data_cut` set:
+  /// its complete messages are read). Otherwise such a file is a ParseError.
+  bool read_header(std::int64_t pos, Fields& f, std::int64_t& data_at, std::uint32_t& data_len,
+                   bool may_cut = false, bool* data_cut = nullptr) {
+    const std::int64_t remaining = file_.size() - pos;
+    if (may_cut && remaining < 4) {
+      cut_short(file_.name(), pos,
+                "truncated record at " + at_offset(pos) + ": " + std::to_string(remaining) +
+                    " bytes remain, less than a header length");
+      return false;
+    }
     const std::uint32_t header_len = load_le32(file_.view(pos, 4, "record header length"));
     if (header_len > kMaxHeaderBytes) bad_record(pos, "record header length " +
                                                           std::to_string(header_len) +
                                                           " is implausible");
+    if (may_cut && remaining < std::int64_t{8} + header_len) {
+      cut_short(file_.name(), pos,
+                "truncated record at " + at_offset(pos) + ": its header needs " +
+                    std::to_string(header_len + 8) + " bytes, the file ends at byte " +
+                    std::to_string(file_.size()));
+      return false;
+    }
     const char* h = file_.view(pos + 4, header_len, "record header");
     f = Fields{};
     if (!parse_fields(h, header_len, f)) bad_record(pos, "record header fields are malformed");
     data_len = load_le32(file_.view(pos + 4 + header_len, 4, "record data length"));
     data_at = pos + 8 + header_len;
     if (static_cast<std::uint64_t>(data_at) + data_len > static_cast<std::uint64_t>(file_.size())) {
-      throw ParseError(file_.name(), 0, 0,
-                       "truncated record at " + at_offset(pos) + ": its data needs " +
-                           std::to_string(data_len) + " bytes from byte " +
-                           std::to_string(data_at) + ", the file ends at byte " +
-                           std::to_string(file_.size()));
+      const std::string detail = "truncated record at " + at_offset(pos) + ": its data needs " +
+                                 std::to_string(data_len) + " bytes from byte " +
+                                 std::to_string(data_at) + ", the file ends at byte " +
+                                 std::to_string(file_.size());
+      if (may_cut && data_len <= kMaxBagChunkBytes) {
+        if (data_cut && f.op == kChunk && f.compression == "none") {
+          *data_cut = true;
+          return true;
+        }
+        cut_short(file_.name(), pos, detail);
+        return false;
+      }
+      throw ParseError(file_.name(), 0, 0, detail);
     }
+    return true;
   }
 
   [[noreturn]] void bad_record(std::int64_t pos, const std::string& why) const {
@@ -307,6 +339,12 @@ class Ros1Bag final : public BagBackend {
   /// Loads the next chunk holding the selected topic (or any chunk while counting). false at the
   /// end of the bag.
   bool next_chunk() {
+    if (cut_chunk_) {  // a cut chunk read to its last byte, which ended a record
+      cut_chunk_ = false;
+      cut_short(file_.name(), chunk_data_at_ + static_cast<std::int64_t>(chunk_.size()),
+                "chunk at " + at_offset(chunk_pos_) + " cut short at byte " +
+                    std::to_string(file_.size()) + " (its records before are complete)");
+    }
     chunk_.clear();
     in_chunk_ = 0;
     while (true) {
@@ -322,7 +360,15 @@ class Ros1Bag final : public BagBackend {
       Fields f;
       std::int64_t data_at = 0;
       std::uint32_t data_len = 0;
-      read_header(pos, f, data_at, data_len);
+      bool data_cut = false;
+      if (!read_header(pos, f, data_at, data_len, !indexed_, &data_cut)) {
+        scan_pos_ = file_.size();  // cut short here: nothing after it
+        return false;
+      }
+      if (data_cut) {
+        load_cut_chunk(pos, data_at, data_len);
+        return true;
+      }
       scan_pos_ = data_at + data_len;
       if (f.op == kConn && !indexed_) {
         if (data_len > kMaxRecordDataBytes) bad_record(pos, "connection header is too long");
@@ -377,6 +423,29 @@ class Ros1Bag final : public BagBackend {
                "chunk");
   }
 
+  /// An uncompressed chunk the file ends inside: its bytes up to the end of the file, whose
+  /// complete records are read (next_in_chunk reports the cut at the first incomplete one).
+  void load_cut_chunk(std::int64_t pos, std::int64_t data_at, std::uint32_t data_len) {
+    chunk_pos_ = pos;
+    chunk_data_at_ = data_at;
+    codec_ = Codec::none;
+    const auto have = static_cast<std::size_t>(file_.size() - data_at);
+    (void)data_len;
+    chunk_.resize(have);
+    file_.read(data_at, have, chunk_.data(), "chunk data");
+    scan_pos_ = file_.size();
+    cut_chunk_ = true;
+  }
+
+  /// A record of a cut chunk runs past the end of the file: the cut.
+  void cut_inside_chunk(std::size_t at) {
+    cut_chunk_ = false;
+    in_chunk_ = chunk_.size();
+    cut_short(file_.name(), chunk_data_at_ + static_cast<std::int64_t>(at),
+              "truncated " + inner_location(at) + ": the file ends at byte " +
+                  std::to_string(file_.size()) + " inside it");
+  }
+
   /// Where a record inside the current chunk is, for messages.
   std::string inner_location(std::size_t inner) const {
     if (codec_ == Codec::none) {
@@ -396,15 +465,20 @@ class Ros1Bag final : public BagBackend {
     const std::size_t at = in_chunk_;
     const std::size_t n = chunk_.size();
     const char* c = chunk_.data();
-    if (n - at < 4) bad_inner(at, "truncated record header length");
+    if (n - at < 4) {
+      if (cut_chunk_) return cut_inside_chunk(at), false;
+      bad_inner(at, "truncated record header length");
+    }
     const std::uint32_t header_len = load_le32(c + at);
     if (header_len > n - at - 4 || n - at - 4 - header_len < 4) {
+      if (cut_chunk_ && header_len <= kMaxHeaderBytes) return cut_inside_chunk(at), false;
       bad_inner(at, "record header of " + std::to_string(header_len) +
                         " bytes runs past the end of the chunk");
     }
     const std::uint32_t data_len = load_le32(c + at + 4 + header_len);
     const std::size_t data_at = at + 8 + header_len;
     if (data_len > n - data_at) {
+      if (cut_chunk_ && data_len <= kMaxRecordDataBytes) return cut_inside_chunk(at), false;
       bad_inner(at, "record data of " + std::to_string(data_len) +
                         " bytes runs past the end of the chunk");
     }
@@ -439,6 +513,7 @@ class Ros1Bag final : public BagBackend {
   bool scanned_ = false;
   bool counting_ = false;
   bool seen_topic_ = false;
+  bool cut_chunk_ = false;  // the current chunk is cut short by the end of the file
   std::unordered_map<std::uint32_t, Connection> conns_;
   std::unordered_map<std::uint32_t, std::int64_t> pending_counts_;
   std::vector<ChunkInfo> chunk_infos_;

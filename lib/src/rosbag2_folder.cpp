@@ -10,6 +10,8 @@
 // compression (each file one zstd stream: .db3.zstd, .mcap.zstd) is refused with what to do:
 // SQLite needs random access, and decompressing a multi-GB file to a temporary copy is a choice
 // left to the user.
+// A recorder that died leaves its last file cut short (see BagBackend::allow_cut): that cut is the
+// folder's; a cut in an earlier file (closed by a split) is corruption, always a ParseError.
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -82,8 +84,11 @@ class Rosbag2Folder final : public BagBackend {
   std::vector<BagTopic> topics(bool need_counts) override {
     if (!topics_.empty() && (!need_counts || counts_known_)) return topics_;
     std::vector<BagTopic> all;
-    for (const std::string& f : files_) {
-      for (const BagTopic& t : open(f)->topics(need_counts)) {
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+      const auto file = open(files_[i]);
+      const std::vector<BagTopic> listed = file->topics(need_counts);
+      take_cut(*file, i + 1 == files_.size());
+      for (const BagTopic& t : listed) {
         auto it = std::find_if(all.begin(), all.end(),
                                [&](const BagTopic& a) { return a.name == t.name; });
         if (it == all.end()) {
@@ -116,6 +121,7 @@ class Rosbag2Folder final : public BagBackend {
     while (true) {
       if (current_ && current_->next(s)) return true;
       if (current_) {
+        take_cut(*current_, index_ == files_.size());
         done_bytes_ += current_->total_bytes();
         current_.reset();
       }
@@ -130,6 +136,7 @@ class Rosbag2Folder final : public BagBackend {
       // Topic lists are cheap with a summary or an SQLite topics table; a split file may lack
       // the topic, which a file-level select on a summary-less MCAP could only tell at its end.
       const auto list = current_->topics(false);
+      take_cut(*current_, index_ == files_.size());
       const bool has = std::any_of(list.begin(), list.end(),
                                    [&](const BagTopic& t) { return t.name == topic_; });
       if (!has || !current_->select(topic_)) {
@@ -199,7 +206,22 @@ class Rosbag2Folder final : public BagBackend {
   }
 
   std::unique_ptr<BagBackend> open(const std::string& f) const {
-    return mcap_ ? open_mcap(f) : open_rosbag2_sqlite(f);
+    auto file = mcap_ ? open_mcap(f) : open_rosbag2_sqlite(f);
+    if (cut_allowed_) file->allow_cut();
+    return file;
+  }
+  /// A cut met in one of the files: the folder's cut when it is the last file (`last`: a
+  /// recorder that died was writing it); before the last, the file was closed by a split and
+  /// ending inside a record is corruption.
+  void take_cut(const BagBackend& file, bool last) {
+    const BagCut& c = file.cut();
+    if (c.at_byte < 0) return;
+    if (!last) {
+      throw ParseError(c.file, 0, 0,
+                       c.detail + " (a file before the last of the recording " + dir_ +
+                           " ends inside a record: corrupt, not a recording cut short)");
+    }
+    cut_ = c;
   }
 
   std::string dir_, yaml_;

@@ -65,6 +65,19 @@ enum class GapPolicy {
 /// time the recorder received it.
 enum class BagStamp { header, receive };
 
+/// What to do with a ROS bag whose recording was cut short: a file without index or summary
+/// (its recorder died: a crash, a full disk, Ctrl-C) that ends inside a record. A file with an
+/// index, summary or footer that ends inside a record is corrupt and always a ParseError.
+enum class TruncatedPolicy {
+  error,  ///< ParseError naming the byte offset of the cut and how many complete messages of the
+          ///< topic precede it (the default)
+  use,    ///< read the complete messages before the cut, then end as at a normal end;
+          ///< TimingReport::truncated_at_byte says where the recording was cut
+};
+
+/// "error" | "use". Throws Error otherwise.
+TruncatedPolicy parse_truncated_policy(std::string_view text);
+
 /// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64"; "report" | "error" | "split" |
 /// "fill"; "skip" | "error". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
@@ -100,6 +113,8 @@ struct LogOptions {
   /// arrive up to this many messages after one with a later stamp. A stamp that is later still
   /// is a ParseError naming its location. Memory: about 80 bytes per message of window.
   std::int64_t reorder_window = 10000;
+  /// A recording cut short (see TruncatedPolicy): an error, or its complete messages are used.
+  TruncatedPolicy truncated = TruncatedPolicy::error;
 };
 
 /// A topic of a bag, as listed by list_bag_topics and in "which topic?" errors.
@@ -171,6 +186,11 @@ struct TimingReport {
   /// sensor_msgs/Imu topic was picked (counts -1 where the bag does not state them without a
   /// full scan); empty when a topic was given and for other inputs.
   std::vector<BagTopic> bag_topics;
+  /// ROS bags read under TruncatedPolicy::use: byte offset in `truncated_file` of the first
+  /// incomplete record, where the recording was cut short (the messages before it were read,
+  /// `samples` of them delivered); -1 when the recording is complete, and for other inputs.
+  std::int64_t truncated_at_byte = -1;
+  std::string truncated_file;  ///< the file cut short (one of a rosbag2 folder's files), or ""
 };
 
 /// Streaming reader. The constructor opens the input and reads up to the first data row (so the
