@@ -217,6 +217,29 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
                  args.input.c_str(), static_cast<long long>(timing.rows_skipped_nonfinite),
                  timing.rows_skipped_nonfinite == 1 ? "" : "s");
   }
+  if (options.gaps == GapPolicy::report && (timing.gap_count > 0 || timing.non_increasing > 0)) {
+    // --gaps report: the gaps are in the JSON; the one-line summary goes here for every format.
+    std::string text;
+    if (timing.gap_count > 0) {
+      char gaps[200];
+      std::snprintf(gaps, sizeof gaps,
+                    "%lld time stamp gap%s (> 1.5 intervals), the largest %.6g s before line %lld",
+                    static_cast<long long>(timing.gap_count), timing.gap_count == 1 ? "" : "s",
+                    timing.largest_gap_s, static_cast<long long>(timing.largest_gap_line));
+      text = gaps;
+    }
+    if (timing.non_increasing > 0) {
+      char back[200];
+      std::snprintf(back, sizeof back, "%lld backwards or duplicated stamp%s (the first at line %lld)",
+                    static_cast<long long>(timing.non_increasing),
+                    timing.non_increasing == 1 ? "" : "s",
+                    static_cast<long long>(timing.first_non_increasing_line));
+      text += (text.empty() ? "" : "; ") + std::string(back);
+    }
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: --gaps report: %s; analysed as if contiguous\n",
+                 args.input.c_str(), text.c_str());
+  }
   if (timing.has_time && timing.rate_hz > 0) {
     // --rate wins over the stamps; say so when they disagree (more than 1 %).
     if (args.rate_hz && std::abs(*args.rate_hz / timing.rate_hz - 1) > 0.01) {
@@ -413,6 +436,18 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
                   (loaded.kind == DataKind::increment ? "per-sample increments" : "an integrated phase") +
                   " (e.g. deg, rad, m/s); give --kind rate for rates, or the unit of the " +
                   (loaded.kind == DataKind::increment ? "increments" : "phase"));
+    }
+    // The reverse: an amount (deg, m/s) with --kind rate would give deviations that are off by
+    // the sample rate and labelled as rates.
+    if (loaded.kind == DataKind::rate && (unit.dimension == sensor_unit_dimension(true, DataKind::increment) ||
+                                          unit.dimension == sensor_unit_dimension(false, DataKind::increment))) {
+      throw Error("--unit " + args.unit + " is " +
+                  (unit.dimension == sensor_unit_dimension(true, DataKind::increment)
+                       ? "an angle"
+                       : "a velocity") +
+                  ", but --kind rate says the values are rates (e.g. deg/s, m/s^2); give --kind "
+                  "increment for per-sample increments or --kind phase for an integrated angle "
+                  "or velocity, or the unit of the rates");
     }
     loaded.to_si = unit.factor;
     loaded.dimension = unit.dimension;

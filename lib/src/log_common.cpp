@@ -103,6 +103,38 @@ std::string quote_field(std::string_view field) {
   return out;
 }
 
+namespace {
+
+/// True when the header fields hold control bytes (other than tab) or NUL: raw binary samples
+/// read as text.
+bool looks_binary(const std::vector<std::string>& names) {
+  for (const std::string& n : names) {
+    for (const char ch : n) {
+      const auto b = static_cast<unsigned char>(ch);
+      if ((b < 0x20 && b != '\t') || b == 0x7f) return true;
+    }
+  }
+  return false;
+}
+
+/// A hint for a header the reader could not use: raw binary data, or fields separated by ';'
+/// (a European CSV, which this reader does not split). "" when there is nothing to add.
+std::string header_hint(const std::vector<std::string>& names) {
+  if (looks_binary(names)) {
+    return "; the file looks binary (control bytes in its first line): for raw samples give "
+           "--binary i16|i32|f32|f64 and --channels C";
+  }
+  for (const std::string& n : names) {
+    if (n.find(';') != std::string::npos) {
+      return "; the header holds ';': fields are separated by commas, tabs or spaces, not ';' "
+             "(convert it: decimal commas to points first, then ';' to ',')";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 ColumnSelection select_columns(const std::vector<std::string>& names, bool has_header,
                                const std::vector<bool>& numeric, const LogOptions& options,
                                const std::string& file, std::int64_t names_line,
@@ -148,7 +180,7 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
         message += (c ? ", " : "") + label(c);
       }
       if (count > kMaxListedNames) message += ", ... (" + std::to_string(count) + " in all)";
-      message += ")";
+      message += ")" + header_hint(names);
     } else {
       message += ": there is no header row; use 0-based indices " + range + " or names c0..c" +
                  std::to_string(count - 1);
@@ -175,7 +207,8 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
       throw ParseError(file, data_line, 0,
                        std::string("no numeric columns") +
                            (sel.has_time ? " besides the time column" : "") +
-                           ": the first data row holds no number to analyse");
+                           ": the first data row holds no number to analyse" +
+                           header_hint(names));
     }
   } else {
     for (const std::string& spec : options.columns) {
