@@ -445,7 +445,8 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
                   (unit.dimension == sensor_unit_dimension(true, DataKind::increment)
                        ? "an angle"
                        : "a velocity") +
-                  ", but --kind rate says the values are rates (e.g. deg/s, m/s^2); give --kind "
+                  " (neither an angular rate nor an acceleration), but --kind rate says the "
+                  "values are rates (e.g. deg/s, m/s^2); give --kind "
                   "increment for per-sample increments or --kind phase for an integrated angle "
                   "or velocity, or the unit of the rates");
     }

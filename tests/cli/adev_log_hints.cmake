@@ -24,10 +24,10 @@ sigmatau_cli_test(NAME cli_log_gaps_report_psd EXIT 0 STDERR "--gaps report: 1 t
 
 # An angle is no rate (the reverse, --kind increment --unit rad/s, was refused already).
 sigmatau_cli_test(NAME cli_log_kind_rate_with_angle EXIT 2
-  STDERR "--unit rad is an angle, but --kind rate says the values are rates"
+  STDERR "--unit rad is an angle \\(neither an angular rate nor an acceleration\\), but --kind rate says the values are rates"
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --unit rad)
 sigmatau_cli_test(NAME cli_log_kind_rate_with_velocity EXIT 2
-  STDERR "--unit m/s is a velocity, but --kind rate"
+  STDERR "--unit m/s is a velocity \\(.*\\), but --kind rate"
   ARGS psd ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv --time-column t --unit m/s)
 
 # A European CSV: fields separated by ';'.
