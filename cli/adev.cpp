@@ -406,6 +406,41 @@ std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<S
   return specs;
 }
 
+/// Stream mode leaves out the asked taus a statistic cannot reach (it knows the length only at
+/// the end): the same note as taus_per_statistic, from the curves; an asked tau that is in no
+/// curve at all is an Error, as in exact mode.
+void note_stream_skipped(const TauSpec& taus, const std::vector<Statistic>& stats,
+                         const std::vector<std::vector<AllanCurve>>& curves, double rate_hz,
+                         const std::string& input) {
+  if (taus.kind != TauSpec::Kind::explicit_seconds || curves.empty()) return;
+  std::vector<std::string> skipped(stats.size());
+  for (const double seconds : taus.seconds) {
+    const auto m = static_cast<std::int64_t>(std::llround(seconds * rate_hz));
+    std::vector<bool> has(stats.size(), false);
+    bool any = false;
+    for (std::size_t s = 0; s < stats.size(); ++s) {
+      for (const auto& p : curves.front()[s].points) has[s] = has[s] || p.value.m == m;
+      any = any || has[s];
+    }
+    char text[40];
+    std::snprintf(text, sizeof text, "%g", seconds);
+    if (!any) {
+      throw Error("tau " + std::string(text) + " s is too long for " +
+                  (stats.size() == 1 ? std::string(to_string(stats.front()))
+                                     : std::string("every statistic asked")) +
+                  " on this log (stream mode)");
+    }
+    for (std::size_t s = 0; s < stats.size(); ++s) {
+      if (!has[s]) skipped[s] += (skipped[s].empty() ? "" : ", ") + std::string(text);
+    }
+  }
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    if (skipped[s].empty()) continue;
+    std::cerr << "sigmatau: note: " << input << ": " << to_string(stats[s]) << " skips tau "
+              << skipped[s] << " s: too long for it on this log\n";
+  }
+}
+
 /// compute_allan_curves with the taus of taus_per_statistic: one call when every statistic has
 /// the same list (the usual case), else one per statistic.
 std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
@@ -479,6 +514,7 @@ void run_adev(const AdevArguments& args) {
     curves = run_out_of_core(args, stats, taus, loaded, samples);
   } else if (stream) {
     curves = run_stream(args, stats, taus, loaded, samples, partial_error);
+    if (partial_error.empty()) note_stream_skipped(taus, stats, curves, loaded.rate_hz, args.log.input);
     if (loaded.log.timing.segment_starts.size() > 1) {
       throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
                   "(" + std::to_string(loaded.log.timing.segment_starts.size()) + " segments)");

@@ -53,3 +53,13 @@ sigmatau_cli_test(NAME cli_adev_taus_per_statistic EXIT 0
 sigmatau_cli_test(NAME cli_adev_taus_none_reaches EXIT 2
   STDERR "tau 200 s is too long for"
   ARGS adev ${mct_white} --time-column t --stat totdev,oadev --taus 10,200)
+# Stream mode knows the length only at the end: the same note from the curves (ADEV stops at
+# m = 400, 40 s; OADEV at 50 s), and a tau in no curve is an error instead of an empty table.
+sigmatau_cli_test(NAME cli_adev_taus_per_statistic_stream EXIT 0
+  STDOUT "gx,oadev,,4\\.500000e\\+01,450,"
+  STDERR "adev skips tau 45 s: too long for it on this log"
+  ARGS adev ${mct_white} --time-column t --columns gx --stat adev,oadev --taus 10,45 --mode stream
+       --format csv)
+sigmatau_cli_test(NAME cli_adev_taus_none_reaches_stream EXIT 2
+  STDERR "tau 450 s is too long for oadev on this log \\(stream mode\\)"
+  ARGS adev ${mct_white} --time-column t --columns gx --taus 450 --mode stream)
