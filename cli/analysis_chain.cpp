@@ -105,11 +105,8 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
 }
 
 void check_output(const ChainArguments& args) {
-  std::error_code ec;
-  if (std::filesystem::exists(args.output, ec) && !args.force) {
-    throw Error(args.output + " exists; use --force to replace it");
-  }
-  check_can_create_in(args.output);
+  // Also refuses a device, pipe or socket (even with --force) and follows a link, early.
+  check_output_directory(args.output, args.force);
 }
 
 void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze,

@@ -35,10 +35,17 @@ void clean_up_outputs_on_interrupt() {
   }
 }
 
+/// A write past `ulimit -f` raises SIGXFSZ, whose default action kills the process and leaves
+/// the "<path>.tmp-<random>" file behind. Ignored, the write fails with EFBIG instead, and the
+/// writer reports "cannot write PATH: File too large" (exit 2) and removes its temporary file,
+/// as for a full disk.
+void report_file_size_limit_as_error() { std::signal(SIGXFSZ, SIG_IGN); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
   clean_up_outputs_on_interrupt();
+  report_file_size_limit_as_error();
   CLI::App app{"sigmatau: how noisy is this IMU, does it meet its data sheet, and what goes into "
                "the filter"};
   app.set_version_flag("--version", std::string("sigmatau ") + SIGMATAU_VERSION);

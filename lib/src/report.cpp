@@ -360,12 +360,12 @@ ReportFiles build_report(const std::string& results_json, const ReportOptions& o
   return out;
 }
 
-void write_output_directory(const std::filesystem::path& dir, const ReportFiles& files,
+void write_output_directory(const std::filesystem::path& requested, const ReportFiles& files,
                             bool overwrite) {
+  // A trailing '/' dropped, a link followed (never replaced), a device or pipe refused even with
+  // --force.
+  const std::filesystem::path dir = check_output_directory(requested, overwrite);
   std::error_code ec;
-  if (std::filesystem::exists(dir, ec) && !overwrite) {
-    throw Error(dir.string() + " exists; use --force to replace it");
-  }
   const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
   std::filesystem::create_directories(parent, ec);
   if (ec) throw Error("cannot create directory " + parent.string() + ": " + ec.message());

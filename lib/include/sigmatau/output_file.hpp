@@ -2,29 +2,57 @@
 /// \file output_file.hpp
 /// Nothing lost: every output file is written to a temporary name in its directory and renamed
 /// into place, and an existing file is only replaced when the user said --force.
+///
+/// What an output path may name (the same rules for every verb's -o, --plot and simulate's log):
+/// - nothing yet: created, and its missing parent directories with it (as `mkdir -p`; scripts
+///   and the test suite rely on this);
+/// - a regular file: replaced atomically, only with --force;
+/// - a directory: refused, even with --force;
+/// - a character device, a FIFO or an open file descriptor (/dev/null, /dev/stdout, /dev/fd/N
+///   as a process substitution gives): written straight into (open and write: no temporary
+///   file, no rename), with or without --force, since that overwrites nothing;
+/// - a socket or a block device: refused;
+/// - a symbolic link: never replaced itself; it is followed (also when dangling) and the rules
+///   above apply to its target, whose own directory then holds the temporary file (and is
+///   created when missing).
 
 #include <filesystem>
 #include <string_view>
 
 namespace sigmatau {
 
-/// Writes `content` to `path` atomically: creates missing parent directories, writes
-/// "<path>.tmp-<random>" in the same directory, flushes it to disk and renames it over `path`.
-/// Throws Error (and leaves no temporary file behind) when `path` exists and `overwrite` is
-/// false ("... exists; use --force to overwrite"), or when the directory cannot be created or
-/// written, or the disk is full.
+/// Writes `content` to `path` by the rules above: for a new or regular file, writes
+/// "<target>.tmp-<random>" beside the target (the path, or what its symbolic links lead to),
+/// flushes it to disk and renames it over the target; for a device, FIFO or open descriptor,
+/// writes straight into it. Throws Error (and leaves no temporary file behind) when the target
+/// is a regular file and `overwrite` is false ("... exists; use --force to overwrite it"), a
+/// directory, a socket or a block device, when its directory cannot be created or written, or
+/// the disk is full (or the file-size limit is reached).
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,
                            bool overwrite);
 
-/// Throws the same "exists" Error as write_file_atomically, early, before long work starts; and
-/// check_can_create_in's Error when the file could not be created there.
+/// Throws, early, before long work starts, the Error write_file_atomically would throw for
+/// `path` without writing anything: "exists; use --force", a directory, socket or block device,
+/// a descriptor that is not open for writing, a device the user may not write, and
+/// check_can_create_in's Error for a new or regular target. Never opens `path` (a FIFO would
+/// block until its reader comes).
 void check_can_write(const std::filesystem::path& path, bool overwrite);
 
-/// Throws Error when nothing could be created at `path`: its nearest existing ancestor D is not
-/// writable and searchable ("cannot write PATH: <reason> (directory D)") or is not a directory
-/// ("cannot create directory D: Not a directory"). Missing directories in between are fine
-/// (they are created). Called early, so that a run does not fail only after its long work.
+/// Throws Error when nothing could be created at `path` (a trailing '/' ignored): its nearest
+/// existing ancestor D is not writable and searchable ("cannot write PATH: <reason> (directory
+/// D)") or is not a directory ("cannot create directory D: Not a directory"). Missing
+/// directories in between are fine (they are created). Symbolic links of `path` itself are not
+/// followed here (check_can_write and check_output_directory do that first). Called early, so
+/// that a run does not fail only after its long work.
 void check_can_create_in(const std::filesystem::path& path);
+
+/// Checks an output DIRECTORY path (analyze and demo -o DIR) and returns where the directory
+/// goes: `dir` with a trailing '/' removed and a symbolic link to it followed (a link is never
+/// replaced). Throws Error when it exists and `overwrite` is false ("... exists; use --force to
+/// replace it"), when it is a device, FIFO, socket or open descriptor (even with --force), or
+/// when it could not be created (check_can_create_in). Creates nothing: the caller creates the
+/// missing parents and the directory.
+std::filesystem::path check_output_directory(const std::filesystem::path& dir, bool overwrite);
 
 /// Unlinks the temporary file of every AtomicOutputFile that is open and not yet committed, and
 /// the scratch paths an InterruptCleanup tracks, and nothing else (the outputs themselves are
@@ -51,27 +79,33 @@ class InterruptCleanup {
 };
 
 /// A file written piece by piece (too large to hold as one string) that appears at `path` only
-/// when commit() succeeds: it is written to "<path>.tmp-<random>" in the same directory, and the
-/// temporary file is removed if the object is destroyed before commit() (an exception on the
-/// way leaves nothing behind). write_file_atomically is this class used once.
+/// when commit() succeeds: it is written to "<target>.tmp-<random>" in the target's directory,
+/// and the temporary file is removed if the object is destroyed before commit() (an exception
+/// on the way leaves nothing behind). A device, FIFO or open descriptor target is written
+/// straight into instead (what was written stays written). write_file_atomically is this class
+/// used once.
 class AtomicOutputFile {
  public:
-  /// Checks `path` as check_can_write does, creates missing parent directories and opens the
-  /// temporary file. Throws Error when any of that fails.
+  /// Checks `path` as check_can_write does, creates the target's missing parent directories and
+  /// opens the temporary file (or the device, FIFO or descriptor itself; opening a FIFO waits
+  /// for its reader). Throws Error when that fails.
   AtomicOutputFile(std::filesystem::path path, bool overwrite);
   ~AtomicOutputFile();
   AtomicOutputFile(const AtomicOutputFile&) = delete;
   AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
 
-  /// Appends `bytes`. Throws Error naming the file when the write fails (e.g. disk full).
+  /// Appends `bytes`. Throws Error naming the file when the write fails (e.g. disk full, or
+  /// "File too large" beyond `ulimit -f`).
   void write(std::string_view bytes);
-  /// Flushes to disk and renames over `path` (re-checking first that no file appeared there
-  /// meanwhile unless overwriting). Throws Error on failure; the temporary file is removed.
+  /// Regular target: flushes to disk and renames over the target (re-checking first that no
+  /// file appeared there meanwhile unless overwriting). Direct target: closes it. Throws Error
+  /// on failure; the temporary file is removed.
   void commit();
 
  private:
-  std::filesystem::path path_;
-  std::filesystem::path temporary_;
+  std::filesystem::path path_;       ///< as the user gave it (named in messages)
+  std::filesystem::path target_;     ///< where the bytes go: path_ with its links followed
+  std::filesystem::path temporary_;  ///< empty when writing straight into target_
   bool overwrite_ = false;
   int fd_ = -1;
   int pending_slot_ = -1;  ///< slot in the interrupt clean-up table, -1 if not tracked

@@ -30,7 +30,9 @@ ReportFiles build_report(const std::string& results_json, const ReportOptions& o
 
 /// Writes `files` into directory `dir` atomically as a whole: everything goes into a fresh
 /// sibling directory, which is renamed to `dir` at the end. An existing `dir` is an Error unless
-/// `overwrite` (then it is replaced only after the new one is complete).
+/// `overwrite` (then it is replaced only after the new one is complete). `dir` goes through
+/// check_output_directory first: a link to it is followed (never replaced), and a device, pipe
+/// or socket is refused even with `overwrite`. Missing parent directories are created.
 void write_output_directory(const std::filesystem::path& dir, const ReportFiles& files,
                             bool overwrite);
 
