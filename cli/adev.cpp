@@ -313,6 +313,10 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   return curves;
 }
 
+std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
+                                        std::int64_t n_phase_points, double tau0_s,
+                                        const std::string& input);
+
 /// --gaps split with more than one segment: every contiguous segment of each channel is its own
 /// series and their results are pooled (allan_segments.hpp), so no difference spans a gap. The
 /// raw samples are released as the series are built.
@@ -327,8 +331,26 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
     channels.push_back(segment_series(channel, ranges, loaded.kind, 1.0 / loaded.rate_hz));
     std::vector<double>().swap(channel);
   }
-  return compute_segmented_allan_curves(channels, stats, taus, args.ci, args.threads,
-                                        parse_edf_model(args.edf));
+  // The longest segment bounds the taus (allan_segments.hpp): explicit taus per statistic.
+  std::int64_t longest = 0;
+  for (const auto& series : channels.front()) {
+    longest = std::max<std::int64_t>(longest, static_cast<std::int64_t>(series.size()));
+  }
+  const std::vector<TauSpec> specs = taus_per_statistic(taus, stats, longest,
+                                                        1.0 / loaded.rate_hz, args.log.input);
+  bool same = true;
+  for (const auto& spec : specs) same = same && spec.seconds == specs.front().seconds;
+  if (same) {
+    return compute_segmented_allan_curves(channels, stats, specs.front(), args.ci, args.threads,
+                                          parse_edf_model(args.edf));
+  }
+  std::vector<std::vector<AllanCurve>> curves(channels.size());
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    auto one = compute_segmented_allan_curves(channels, {stats[s]}, specs[s], args.ci, args.threads,
+                                              parse_edf_model(args.edf));
+    for (std::size_t c = 0; c < channels.size(); ++c) curves[c].push_back(std::move(one[c].front()));
+  }
+  return curves;
 }
 
 /// Constant channels of a log in memory (check_stuck: a run as long as the channel); false

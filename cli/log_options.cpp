@@ -327,6 +327,7 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded) {
     const Unit u = parse_unit(args.unit);  // loaded.to_si is 1 for a bag (not scaled on reading)
     given_all = ChannelUnit{args.unit, u.dimension, u.factor, bag ? u.factor : 1.0, "--unit"};
   }
+  std::string left_out;  // columns of the sensor whose --gyro-unit / --accel-unit is missing
   for (std::size_t c = 0; c < names.size(); ++c) {
     const auto role = classify_channel(names[c]);
     ChannelUnit& unit = loaded.channel_units[c];
@@ -364,7 +365,15 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded) {
                   "--accel-unit cannot say its unit; choose the sensor columns with --columns");
     }
     const auto& chosen = role->sensor == Sensor::gyro ? given_gyro : given_accel;
-    if (chosen) unit = *chosen;
+    if (chosen) {
+      unit = *chosen;
+    } else {
+      left_out += (left_out.empty() ? "" : ", ") + names[c];
+    }
+  }
+  if (!left_out.empty()) {
+    std::fprintf(stderr, "sigmatau: note: %s: no %s: %s left in the input unit\n", args.input.c_str(),
+                 args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit", left_out.c_str());
   }
 }
 

@@ -73,3 +73,8 @@ set_tests_properties(cli_bags_units_known cli_bags_units_same_as_csv_with_unit
                      cli_bags_psd_units_known cli_bags_unit_contradicts
                      cli_bags_gyro_unit_contradicts cli_bags_unit_agrees cli_bags_kind_refused
                      PROPERTIES FIXTURES_REQUIRED cli_bags)
+# Only one sensor's unit: the other sensor's columns stay in the input unit, and that is said.
+sigmatau_cli_test(NAME cli_adev_sensor_unit_one_given EXIT 0
+  STDOUT "ax,oadev,,"
+  STDERR "no --accel-unit: ax, ay, az left in the input unit"
+  ARGS adev ${su_imu6} --time-column t --gyro-unit deg/s --taus 1 --format csv)
