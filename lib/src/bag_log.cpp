@@ -209,10 +209,14 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
       if (is_imu_type(t.type)) imu.push_back(&t);
     }
     if (imu.size() != 1) {
+      check_cut(-1);  // under TruncatedPolicy::error the cut explains a missing topic first
+      const BagCut& cut = backend_->cut();
+      const std::string before_cut =
+          cut.at_byte >= 0 ? " before the cut at byte " + std::to_string(cut.at_byte) : "";
       throw Error(file_ + ": " +
-                  (imu.empty() ? std::string("no sensor_msgs/Imu topic in the bag")
-                               : std::to_string(imu.size()) +
-                                     " sensor_msgs/Imu topics; choose one with --topic") +
+                  (imu.empty() ? "no sensor_msgs/Imu topic in the bag" + before_cut
+                               : std::to_string(imu.size()) + " sensor_msgs/Imu topics" +
+                                     before_cut + "; choose one with --topic") +
                   "; its topics: " + topic_list(backend_->topics(true)));
     }
     topic_ = imu.front()->name;
@@ -237,13 +241,14 @@ void BagLog::check_cut(std::int64_t complete) const {
   const BagCut& cut = backend_->cut();
   if (cut.at_byte < 0 || truncated_ == TruncatedPolicy::use) return;
   throw ParseError(cut.file, 0, 0,
-                   "the recording was cut short at byte " + std::to_string(cut.at_byte) +
+                   cut.detail + ": the recording was cut short at byte " +
+                       std::to_string(cut.at_byte) +
                        (complete >= 0 ? " after " + std::to_string(complete) +
                                             " complete message" + (complete == 1 ? "" : "s") +
                                             " of " + topic_
                                       : std::string()) +
-                       " (its recorder stopped without closing the file: " + cut.detail +
-                       "); give --truncated use to analyse the complete messages before it");
+                       " (its recorder stopped without closing the file); give --truncated use "
+                       "to analyse the complete messages before it");
 }
 
 BagLog::~BagLog() = default;
