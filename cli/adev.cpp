@@ -113,9 +113,13 @@ std::vector<OutputUnit> output_units(const LoadedChannels& loaded, const std::st
   return units;
 }
 
-/// --out-unit checked before the log is read (with the --unit given; channel units from names
-/// or a bag are known only once it is read).
+/// The units and --out-unit checked before the log is read: with the channel names from its
+/// header or the bag's channels (early_channel_units), else (stdin) with the --unit given.
 void check_out_unit_early(const LogArguments& args, const std::string& out_unit) {
+  if (const auto early = early_channel_units(args)) {
+    output_units(*early, out_unit);
+    return;
+  }
   if (out_unit.empty() || per_channel_units(args)) return;
   LoadedChannels unit_only;
   set_input_unit(args, unit_only);

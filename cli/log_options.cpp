@@ -300,7 +300,25 @@ ChannelUnit bag_unit(Sensor s) {
 
 }  // namespace
 
-void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded) {
+std::optional<LoadedChannels> early_channel_units(const LogArguments& args) {
+  const bool bag = is_bag_path(args.input);
+  const bool any_unit = !args.unit.empty() || !args.gyro_unit.empty() || !args.accel_unit.empty();
+  if (args.input == "-" || (!bag && !any_unit)) return std::nullopt;
+  LoadedChannels loaded;
+  set_input_unit(args, loaded);
+  const LogOptions options = log_options_from(args);
+  if (bag) {
+    loaded.log.channel_names = options.columns.empty()
+                                   ? std::vector<std::string>{"gx", "gy", "gz", "ax", "ay", "az"}
+                                   : options.columns;
+  } else {
+    loaded.log.channel_names = LogReader(options).channel_names();
+  }
+  resolve_channel_units(args, loaded, false);
+  return loaded;
+}
+
+void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, bool notes) {
   const auto& names = loaded.log.channel_names;
   loaded.channel_units.assign(names.size(), ChannelUnit{});
   const bool bag = is_bag_path(args.input);
@@ -371,7 +389,7 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded) {
       left_out += (left_out.empty() ? "" : ", ") + names[c];
     }
   }
-  if (!left_out.empty()) {
+  if (notes && !left_out.empty()) {
     std::fprintf(stderr, "sigmatau: note: %s: no %s: %s left in the input unit\n", args.input.c_str(),
                  args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit", left_out.c_str());
   }

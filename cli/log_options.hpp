@@ -87,7 +87,15 @@ struct LoadedChannels {
 ///   rad/s: the message's units are fixed);
 /// - --gyro-unit / --accel-unit is given and a column is neither sensor by its name.
 /// Call once the names are known, on every path (in memory, stream, out of core).
-void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded);
+/// `notes`: print the note about a sensor left without a unit (off for early_channel_units).
+void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, bool notes = true);
+
+/// The channel units known before the log is read (so a contradiction is an error at once, not
+/// after a long read): the channel names from the header (a LogReader opened and dropped), or
+/// for a ROS bag from --columns or the six Imu channels; resolve_channel_units on them.
+/// nullopt for stdin (it cannot be read twice) and when no unit option is given to a text or
+/// binary log (nothing to check). Throws as resolve_channel_units and the reader do.
+std::optional<LoadedChannels> early_channel_units(const LogArguments& args);
 
 /// True when --gyro-unit or --accel-unit was given or the input is a ROS bag: then the samples
 /// are not scaled on reading (loaded.to_si stays 1) and each channel's results are scaled by

@@ -119,7 +119,9 @@ void run_psd(const PsdArguments& args) {
   }
 
   const std::int64_t memory = parse_bytes(args.memory);
-  {
+  if (const auto early = early_channel_units(args.log)) {
+    density_units(*early, args.out_unit);  // the units and --out-unit, before a long read
+  } else {
     LoadedChannels unit_only;  // --kind, --unit and --out-unit are checked before reading
     set_input_unit(args.log, unit_only);
     if (!per_channel_units(args.log)) {  // channel units from names or a bag: known once read

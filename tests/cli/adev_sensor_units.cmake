@@ -78,3 +78,14 @@ sigmatau_cli_test(NAME cli_adev_sensor_unit_one_given EXIT 0
   STDOUT "ax,oadev,,"
   STDERR "no --accel-unit: ax, ay, az left in the input unit"
   ARGS adev ${su_imu6} --time-column t --gyro-unit deg/s --taus 1 --format csv)
+# The units are checked from the header, before the log is read: a log whose third row is
+# broken gets the unit error, not the row's (a long log would otherwise be read to the end first).
+set(su_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_sensor_units)
+file(MAKE_DIRECTORY ${su_dir})
+file(WRITE ${su_dir}/broken.csv "t,gyro_x,accel_x\n0.0,0.1,0.01\n0.1,0.2,oops\n")
+sigmatau_cli_test(NAME cli_adev_unit_checked_before_reading EXIT 2
+  STDERR "column accel_x is an accelerometer axis by its name"
+  ARGS adev ${su_dir}/broken.csv --time-column t --unit deg/s)
+sigmatau_cli_test(NAME cli_psd_unit_checked_before_reading EXIT 2
+  STDERR "column accel_x is an accelerometer axis by its name"
+  ARGS psd ${su_dir}/broken.csv --time-column t --unit mdps)
