@@ -89,3 +89,9 @@ sigmatau_cli_test(NAME cli_adev_unit_checked_before_reading EXIT 2
 sigmatau_cli_test(NAME cli_psd_unit_checked_before_reading EXIT 2
   STDERR "column accel_x is an accelerometer axis by its name"
   ARGS psd ${su_dir}/broken.csv --time-column t --unit mdps)
+# Out of core (--memory 1K) scales each channel by its sensor's unit as the in-memory path does.
+add_test(NAME cli_adev_sensor_units_out_of_core
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>"
+                 "-DARGS_A=adev@@${su_imu6}@@--time-column@@t@@--gyro-unit@@deg/s@@--accel-unit@@g@@--out-unit@@deg/h,ug@@--format@@csv"
+                 "-DARGS_B=adev@@${su_imu6}@@--time-column@@t@@--gyro-unit@@deg/s@@--accel-unit@@g@@--out-unit@@deg/h,ug@@--format@@csv@@--memory@@1K"
+                 -P ${su_same})
