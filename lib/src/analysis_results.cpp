@@ -196,6 +196,11 @@ json input_json(const AnalysisInput& input, std::int64_t samples, std::int64_t s
     j["timing"] = {{"rate_hz", t.rate_hz}, {"mean_interval_s", t.mean_interval_s},
                    {"jitter_s", t.jitter_s}, {"non_increasing", t.non_increasing},
                    {"gaps", gaps}};
+    if (t.truncated_at_byte >= 0) {
+      // A bag recording cut short and read with --truncated use: where it ends.
+      j["timing"]["truncated_at_byte"] = t.truncated_at_byte;
+      j["timing"]["truncated_file"] = t.truncated_file;
+    }
   } else {
     j["timing"] = nullptr;
   }

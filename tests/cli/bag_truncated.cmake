@@ -42,6 +42,8 @@ check_cut() {  # check_cut FILE TOPIC TOTAL VERB-ARGS...: default error, then --
     printf '%s' "$err" | grep -Eq -- "$note" || fail "$name $verb: no note '$note' in: $err"
     echo "ok: $name $verb --truncated use: exit 0 and the note"
   done
+  grep -q "\"truncated_at_byte\": *$at[,}]" "$W/analyze/results.json" ||
+    fail "$name: analyze's results.json does not record truncated_at_byte $at"
   run adev "$f" --columns gx --taus 1 --truncated use
   grep -q "$name: $n samples at 200 Hz" "$W/out" || fail "$name: not $n samples: $(head -1 "$W/out")"
   echo "ok: $name: $n samples analysed"
