@@ -8,6 +8,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "adev_taus.hpp"
+#include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
@@ -317,10 +319,6 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   return curves;
 }
 
-std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
-                                        std::int64_t n_phase_points, double tau0_s,
-                                        const std::string& input);
-
 /// --gaps split with more than one segment: every contiguous segment of each channel is its own
 /// series and their results are pooled (allan_segments.hpp), so no difference spans a gap. The
 /// raw samples are released as the series are built.
@@ -394,100 +392,6 @@ std::vector<bool> constant_by_curves(const std::vector<std::vector<AllanCurve>>&
   return constant;
 }
 
-/// Explicit --taus with several statistics: each statistic gets the asked taus it can reach on
-/// `n_phase_points`; the ones it cannot are noted on stderr. A tau that no statistic reaches
-/// stays in every list, so that averaging_factors reports it as before (exit 2).
-std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
-                                        std::int64_t n_phase_points, double tau0_s,
-                                        const std::string& input) {
-  std::vector<TauSpec> specs(stats.size(), taus);
-  if (taus.kind != TauSpec::Kind::explicit_seconds || stats.size() < 2) return specs;
-  for (auto& spec : specs) spec.seconds.clear();
-  std::vector<std::string> skipped(stats.size());
-  for (const double seconds : taus.seconds) {
-    const double m = std::round(seconds / tau0_s);
-    std::vector<bool> reach(stats.size());
-    bool any = false;
-    for (std::size_t s = 0; s < stats.size(); ++s) {
-      reach[s] = m <= static_cast<double>(max_averaging_factor(stats[s], n_phase_points));
-      any = any || reach[s];
-    }
-    for (std::size_t s = 0; s < stats.size(); ++s) {
-      if (reach[s] || !any) {
-        specs[s].seconds.push_back(seconds);
-      } else {
-        char text[40];
-        std::snprintf(text, sizeof text, "%g", seconds);
-        skipped[s] += (skipped[s].empty() ? "" : ", ") + std::string(text);
-      }
-    }
-  }
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    if (skipped[s].empty()) continue;
-    const std::int64_t max_m = max_averaging_factor(stats[s], n_phase_points);
-    std::cerr << "sigmatau: note: " << input << ": " << to_string(stats[s])
-              << " skips tau " << skipped[s] << " s: its longest on this log is "
-              << static_cast<double>(max_m) * tau0_s << " s (m = " << max_m << ")\n";
-  }
-  return specs;
-}
-
-/// Stream mode leaves out the asked taus a statistic cannot reach (it knows the length only at
-/// the end): the same note as taus_per_statistic, from the curves; an asked tau that is in no
-/// curve at all is an Error, as in exact mode.
-void note_stream_skipped(const TauSpec& taus, const std::vector<Statistic>& stats,
-                         const std::vector<std::vector<AllanCurve>>& curves, double rate_hz,
-                         const std::string& input) {
-  if (taus.kind != TauSpec::Kind::explicit_seconds || curves.empty()) return;
-  std::vector<std::string> skipped(stats.size());
-  for (const double seconds : taus.seconds) {
-    const auto m = static_cast<std::int64_t>(std::llround(seconds * rate_hz));
-    std::vector<bool> has(stats.size(), false);
-    bool any = false;
-    for (std::size_t s = 0; s < stats.size(); ++s) {
-      for (const auto& p : curves.front()[s].points) has[s] = has[s] || p.value.m == m;
-      any = any || has[s];
-    }
-    char text[40];
-    std::snprintf(text, sizeof text, "%g", seconds);
-    if (!any) {
-      throw Error("tau " + std::string(text) + " s is too long for " +
-                  (stats.size() == 1 ? std::string(to_string(stats.front()))
-                                     : std::string("every statistic asked")) +
-                  " on this log (stream mode)");
-    }
-    for (std::size_t s = 0; s < stats.size(); ++s) {
-      if (!has[s]) skipped[s] += (skipped[s].empty() ? "" : ", ") + std::string(text);
-    }
-  }
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    if (skipped[s].empty()) continue;
-    std::cerr << "sigmatau: note: " << input << ": " << to_string(stats[s]) << " skips tau "
-              << skipped[s] << " s: too long for it on this log\n";
-  }
-}
-
-/// compute_allan_curves with the taus of taus_per_statistic: one call when every statistic has
-/// the same list (the usual case), else one per statistic.
-std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
-                                                          const std::vector<Statistic>& stats,
-                                                          const TauSpec& taus,
-                                                          const AdevArguments& args,
-                                                          EdfModel edf_model) {
-  const std::vector<TauSpec> specs = taus_per_statistic(
-      taus, stats, static_cast<std::int64_t>(series.front().size()), series.front().tau0_s(),
-      args.log.input);
-  bool same = true;
-  for (const auto& spec : specs) same = same && spec.seconds == specs.front().seconds;
-  if (same) return compute_allan_curves(series, stats, specs.front(), args.ci, args.threads, edf_model);
-  std::vector<std::vector<AllanCurve>> curves(series.size());
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    auto one = compute_allan_curves(series, {stats[s]}, specs[s], args.ci, args.threads, edf_model);
-    for (std::size_t c = 0; c < series.size(); ++c) curves[c].push_back(std::move(one[c].front()));
-  }
-  return curves;
-}
-
 void run_adev(const AdevArguments& args) {
   std::vector<Statistic> stats;
   for (const auto& name : split_list(args.statistics, "--stat")) stats.push_back(parse_statistic(name));
@@ -558,7 +462,8 @@ void run_adev(const AdevArguments& args) {
       series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
       std::vector<double>().swap(channel);  // the raw samples are no longer needed
     }
-    curves = curves_per_statistic(series, stats, taus, args, edf_model);
+    curves = curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,
+                                  args.log.input);
   }
   if (!constant_found) {
     constant = constant_by_curves(curves);

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "psd_stream.hpp"

@@ -1,5 +1,7 @@
 #include "psd_stream.hpp"
 
+#include "channel_units.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <limits>

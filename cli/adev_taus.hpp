@@ -1,0 +1,38 @@
+#pragma once
+// adev: an explicit --taus list with several statistics (e.g. --stat totdev,oadev --taus
+// 32,256 on a log where OADEV stops at 250 s): each statistic computes the asked taus it can
+// reach, the skipped ones are noted on stderr, and a tau that no statistic reaches stays an
+// Error (exit 2).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sigmatau/allan_curve.hpp"
+#include "sigmatau/phase_series.hpp"
+#include "sigmatau/taus.hpp"
+
+namespace sigmatau::cli {
+
+/// Per statistic, `taus` with the explicit seconds it cannot reach on `n_phase_points` (of
+/// interval tau0_s [s]) left out and noted on stderr (naming `input`); a tau no statistic
+/// reaches stays in every list, so averaging_factors reports it. Non-explicit specs and a
+/// single statistic: `taus` for each, unchanged.
+std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
+                                        std::int64_t n_phase_points, double tau0_s,
+                                        const std::string& input);
+
+/// Stream mode: the same note from the curves (the length is known only at the end), for the
+/// asked taus missing from a statistic's curve; Error for an asked tau in no curve. rate_hz [Hz].
+void note_stream_skipped(const TauSpec& taus, const std::vector<Statistic>& stats,
+                         const std::vector<std::vector<AllanCurve>>& curves, double rate_hz,
+                         const std::string& input);
+
+/// compute_allan_curves with the taus of taus_per_statistic (one call when every statistic has
+/// the same list, else one per statistic). Returns curves[channel][statistic].
+std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
+                                                          const std::vector<Statistic>& stats,
+                                                          const TauSpec& taus, double ci,
+                                                          unsigned threads, EdfModel edf_model,
+                                                          const std::string& input);
+
+}  // namespace sigmatau::cli
