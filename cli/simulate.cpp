@@ -4,11 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "log_options.hpp"
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
 #include "sigmatau/spec.hpp"
 #include "sigmatau/simulate.hpp"
@@ -31,6 +34,7 @@ struct SimulateArguments {
   std::string kind = "rate";
   std::string format = "csv";
   std::string output;
+  std::string sidecar;  ///< empty: OUTPUT.json; "none": no sidecar
   bool force = false;
   std::string roll = "0 deg", pitch = "0 deg", yaw = "0 deg", latitude = "0 deg";
   std::string gyro_bias, accel_bias;
@@ -318,12 +322,26 @@ void run_simulate(const SimulateArguments& a) {
   validate(c);
   for (const auto& warning : simulation_warnings(c)) std::cerr << "warning: " << warning << "\n";
   const bool tty = stderr_is_tty();
-  write_simulation(c, a.output, format, a.force, [tty](std::int64_t done, std::int64_t total) {
-    if (tty) std::cerr << "\rsimulate: " << (100 * done / total) << "%" << std::flush;
-  });
+  std::optional<std::filesystem::path> sidecar;
+  if (a.sidecar == "none") {
+    sidecar = std::filesystem::path();
+  } else if (!a.sidecar.empty()) {
+    sidecar = std::filesystem::path(a.sidecar);
+  }
+  write_simulation(
+      c, a.output, format, a.force,
+      [tty](std::int64_t done, std::int64_t total) {
+        if (tty) std::cerr << "\rsimulate: " << (100 * done / total) << "%" << std::flush;
+      },
+      sidecar);
   if (tty) std::cerr << "\n";
-  std::cout << "wrote " << a.output << " (" << c.samples << " samples at " << c.rate_hz
-            << " Hz, kind " << to_string(c.kind) << ") and " << a.output << ".json\n";
+  // With -o /dev/stdout the log itself is on stdout: the line goes to stderr then.
+  (is_stream_output(a.output) ? std::cerr : std::cout) << "wrote " << a.output << " (" << c.samples << " samples at " << c.rate_hz
+            << " Hz, kind " << to_string(c.kind) << ")"
+            << (!sidecar ? " and " + a.output + ".json"
+                         : sidecar->empty() ? std::string(" without its truth (--sidecar none)")
+                                            : " and " + sidecar->string())
+            << "\n";
 }
 
 }  // namespace
@@ -398,6 +416,9 @@ void add_simulate_command(CLI::App& app) {
                       "read it back")
       ->capture_default_str();
   command->add_option("-o,--output", args->output, "output FILE (and FILE.json)")->required();
+  command->add_option("--sidecar", args->sidecar,
+                      "where the truth JSON goes (default FILE.json; needed when -o is a device "
+                      "or pipe such as /dev/stdout; none: no truth written)");
   command->add_flag("--force", args->force, "overwrite existing files");
   command->add_option("--roll", args->roll, "roll of the sensor frame, e.g. \"10 deg\"")
       ->capture_default_str();

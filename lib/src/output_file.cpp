@@ -362,4 +362,10 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   file.commit();
 }
 
+bool is_stream_output(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);  // follows links
+  return !ec && (std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status));
+}
+
 }  // namespace sigmatau

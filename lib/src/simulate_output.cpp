@@ -338,12 +338,16 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
 
 void write_simulation(const SimulationConfig& config, const std::filesystem::path& path,
                       SampleFormat format, bool overwrite,
-                      const std::function<void(std::int64_t, std::int64_t)>& progress) {
-  auto sidecar_path = path;
-  sidecar_path += ".json";
+                      const std::function<void(std::int64_t, std::int64_t)>& progress,
+                      const std::optional<std::filesystem::path>& sidecar) {
+  if (!sidecar && is_stream_output(path)) {
+    throw Error(path.string() + " is a device or pipe, so its truth cannot go beside it as " +
+                path.string() + ".json: give --sidecar FILE (or --sidecar none to write no truth)");
+  }
+  std::filesystem::path sidecar_path = sidecar ? *sidecar : std::filesystem::path(path.string() + ".json");
   check_can_write(path, overwrite);
-  check_can_write(sidecar_path, overwrite);
-  const std::string sidecar = simulation_sidecar_json(config, format);  // validates
+  if (!sidecar_path.empty()) check_can_write(sidecar_path, overwrite);
+  const std::string sidecar_text = simulation_sidecar_json(config, format);  // validates
   Simulator simulator(config);
   AtomicOutputFile file(path, overwrite);
   const int nch = simulator.channels();
@@ -415,7 +419,7 @@ void write_simulation(const SimulationConfig& config, const std::filesystem::pat
     std::swap(block, next_block);
   }
   // The sidecar first: a log without its truth is worse than truth without its log.
-  write_file_atomically(sidecar_path, sidecar, overwrite);
+  if (!sidecar_path.empty()) write_file_atomically(sidecar_path, sidecar_text, overwrite);
   file.commit();
 }
 

@@ -160,3 +160,31 @@ left=$(ls -A "$W/out"); [ -z "$left" ] || fail "left behind: $left"
 echo "ok: nothing left"
 ]=])
 sigmatau_output_special_test(cli_output_special_file_size_limit "${special_prologue}${fsize_check}")
+
+# simulate into a FIFO (as `-o /dev/stdout | sigmatau adev -` does): its truth cannot go beside
+# the FIFO as FIFO.json (beside /dev/stdout that is /dev/stdout.json), so without --sidecar it is
+# refused before anything is written; --sidecar FILE puts it there, --sidecar none leaves it out.
+set(simulate_fifo_check [=[
+mkfifo "$W/log" || exit 77
+model="N=0.1 deg/sqrt(h)"
+run simulate --model "$model" --rate 100 --duration 10s -o "$W/log"
+expect 2 "$W/log is a device or pipe, so its truth cannot go beside it as $W/log\.json: give --sidecar FILE"
+[ ! -e "$W/log.json" ] || fail "log.json written"
+type_is "$W/log" "fifo"
+cat "$W/log" >"$W/read.csv" &
+reader=$!
+run simulate --model "$model" --rate 100 --duration 10s -o "$W/log" --sidecar "$W/truth.json"
+wait $reader
+expect 0 "wrote $W/log \(1000 samples at 100 Hz, kind rate\) and $W/truth\.json"
+[ "$(wc -l <"$W/read.csv")" = 1001 ] || fail "the reader got $(wc -l <"$W/read.csv") lines, expected 1001"
+grep -q '"theory"' "$W/truth.json" || fail "no truth in truth.json"
+cat "$W/log" >/dev/null &
+reader=$!
+run simulate --model "$model" --rate 100 --duration 10s -o "$W/log" --sidecar none
+wait $reader
+expect 0 "without its truth \(--sidecar none\)"
+[ ! -e "$W/log.json" ] || fail "log.json written with --sidecar none"
+type_is "$W/log" "fifo"
+echo "ok: simulate into a FIFO"
+]=])
+sigmatau_output_special_test(cli_output_special_simulate_fifo "${special_prologue}${simulate_fifo_check}")

@@ -31,6 +31,11 @@ namespace sigmatau {
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,
                            bool overwrite);
 
+/// Whether `path` (its symbolic links followed) names an existing character device or FIFO
+/// (/dev/null, /dev/stdout into a pipe or terminal, a process substitution's /dev/fd/N): an
+/// output written straight into, beside which no sibling file ("<path>.json") can go.
+bool is_stream_output(const std::filesystem::path& path);
+
 /// Throws, early, before long work starts, the Error write_file_atomically would throw for
 /// `path` without writing anything: "exists; use --force", a directory, socket or block device,
 /// a descriptor that is not open for writing, a device the user may not write, and

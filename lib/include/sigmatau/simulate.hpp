@@ -303,9 +303,12 @@ std::string simulation_sidecar_json(const SimulationConfig& config,
 /// values in config.gyro_unit / accel_unit, SI by default) and its sidecar to
 /// "<path>.json". Both files are written to a temporary name in their directory and renamed
 /// into place; an existing file is an Error unless `overwrite`. `progress(done, total)` is
-/// called after each block when set.
+/// called after each block when set. `sidecar` replaces "<path>.json" (an empty path: no
+/// sidecar). When `path` is a device or pipe (is_stream_output: -o /dev/stdout) and no
+/// `sidecar` is given, Error before anything is written: "<path>.json" would land in /dev.
 void write_simulation(const SimulationConfig& config, const std::filesystem::path& path,
                       SampleFormat format, bool overwrite,
-                      const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                      const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                      const std::optional<std::filesystem::path>& sidecar = std::nullopt);
 
 }  // namespace sigmatau
