@@ -232,6 +232,10 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
                               {"non_increasing", t.non_increasing},
                               {"gaps", gaps}};
     if (!t.segment_starts.empty()) doc["input"]["timing"]["segment_starts"] = t.segment_starts;
+    if (t.truncated_at_byte >= 0) {  // a cut-short bag read with --truncated use
+      doc["input"]["timing"]["truncated_at_byte"] = t.truncated_at_byte;
+      doc["input"]["timing"]["truncated_file"] = t.truncated_file;
+    }
   }
   doc["results"] = nlohmann::json::array();
   for (std::size_t c = 0; c < curves.size(); ++c) {

@@ -46,6 +46,8 @@ check_cut() {  # check_cut FILE TOPIC TOTAL VERB-ARGS...: default error, then --
     fail "$name: analyze's results.json does not record truncated_at_byte $at"
   run adev "$f" --columns gx --taus 1 --truncated use
   grep -q "$name: $n samples at 200 Hz" "$W/out" || fail "$name: not $n samples: $(head -1 "$W/out")"
+  run adev "$f" --columns gx --taus 1 --truncated use --format json
+  grep -q "\"truncated_at_byte\": *$at," "$W/out" || fail "$name: adev's JSON does not record truncated_at_byte $at"
   echo "ok: $name: $n samples analysed"
 }
 cut_copy "$B/imu_lz4.mcap" "$W/CUT.mcap" 5000
