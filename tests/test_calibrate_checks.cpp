@@ -15,6 +15,7 @@
 #include "sigmatau/calibrate_checks.hpp"
 #include "sigmatau/calibrate_log.hpp"
 #include "sigmatau/error.hpp"
+#include "test_support.hpp"
 
 using namespace sigmatau;
 
@@ -22,16 +23,7 @@ namespace {
 
 constexpr double kG = 9.80665;
 
-/// The message of the Error `f` throws ("" when it throws none).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -17,13 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// "error" when `f` throws sigmatau::Error, "ok" when it returns, else the foreign exception.
 template <class F>
 std::string outcome(F f) {
@@ -55,7 +48,7 @@ TEST_CASE("spec inputs found by fuzz_spec parse or throw sigmatau::Error") {
   int files = 0;
   for (const auto& entry : fs::directory_iterator(test::test_data_dir() / "fuzz" / "spec")) {
     CAPTURE(entry.path().string());
-    const std::string text = slurp(entry.path());
+    const std::string text = test::file_text(entry.path());
     const std::string r = outcome([&] { parse_data_sheet(text, entry.path().string()); });
     INFO(r);
     CHECK((r == "ok" || r == "error"));
@@ -72,7 +65,7 @@ TEST_CASE("text logs found by fuzz_text_log read, fill or throw sigmatau::Error"
   int files = 0;
   for (const auto& entry : fs::directory_iterator(test::test_data_dir() / "fuzz" / "text_log")) {
     CAPTURE(entry.path().string());
-    const std::string bytes = slurp(entry.path());
+    const std::string bytes = test::file_text(entry.path());
     REQUIRE(!bytes.empty());
     const auto flags = static_cast<unsigned char>(bytes[0]);
     const std::string path = dir.file("input.txt");
@@ -118,7 +111,7 @@ TEST_CASE("bags found by fuzz_bag read or throw sigmatau::Error") {
   int files = 0;
   for (const auto& entry : fs::directory_iterator(test::test_data_dir() / "fuzz" / "bag")) {
     CAPTURE(entry.path().string());
-    const std::string bytes = slurp(entry.path());
+    const std::string bytes = test::file_text(entry.path());
     REQUIRE(!bytes.empty());
     const auto flags = static_cast<unsigned char>(bytes[0]);
     const char* const extensions[3] = {".bag", ".mcap", ".db3"};

@@ -21,29 +21,14 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "temp_dir.hpp"
+#include "test_support.hpp"
 
 using namespace sigmatau;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// The message of the Error `f` throws, or "" when it throws none.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 /// The file type of `p` itself (links not followed), as `stat -c %F` would name it.
 std::string type_of(const fs::path& p) {
@@ -68,7 +53,7 @@ bool has_temporary(const fs::path& dir) {
 
 /// Reads a FIFO to its end on another thread (a writer's open() waits for a reader).
 std::future<std::string> read_fifo(const fs::path& fifo) {
-  return std::async(std::launch::async, [fifo] { return slurp(fifo); });
+  return std::async(std::launch::async, [fifo] { return test::file_text(fifo); });
 }
 
 /// What the reader of `fifo` got. Until the reader is done, opens and closes the FIFO for
@@ -168,7 +153,7 @@ TEST_CASE("an open descriptor (/dev/fd/N, /proc/self/fd/N, a link to one) is wri
     ::close(fd);
     struct stat after {};
     REQUIRE(::stat(file.c_str(), &after) == 0);
-    CHECK(slurp(file) == "kept\nadded\n");
+    CHECK(test::file_text(file) == "kept\nadded\n");
     CHECK(after.st_ino == before.st_ino);  // the same file, not a renamed copy
     CHECK_FALSE(has_temporary(dir.file("")));
   }
@@ -194,11 +179,11 @@ TEST_CASE("a symbolic link to a regular file is followed: the target is replaced
   const std::string refused = error_of([&] { write_file_atomically(link, "new\n", false); });
   CHECK(refused.find("exists; use --force") != std::string::npos);
   CHECK(refused.find("real/a.txt") != std::string::npos);  // says where the link leads
-  CHECK(slurp(target) == "old\n");
+  CHECK(test::file_text(target) == "old\n");
   write_file_atomically(link, "new\n", true);
   CHECK(type_of(link) == "symlink");
   CHECK(fs::read_symlink(link) == "../real/a.txt");
-  CHECK(slurp(target) == "new\n");
+  CHECK(test::file_text(target) == "new\n");
   CHECK_FALSE(has_temporary(dir.file("real")));
   CHECK_FALSE(has_temporary(dir.file("links")));
 }
@@ -210,12 +195,12 @@ TEST_CASE("a dangling symbolic link is followed: its target is created, the link
   write_file_atomically(dir.file("link"), "created\n", false);
   CHECK(type_of(dir.file("link")) == "symlink");
   CHECK(type_of(dir.file("real") / "new.txt") == "regular");
-  CHECK(slurp(dir.file("real") / "new.txt") == "created\n");
+  CHECK(test::file_text(dir.file("real") / "new.txt") == "created\n");
   SUBCASE("a link into a missing directory creates that directory, not one beside the link") {
     fs::create_symlink("elsewhere/x.txt", dir.file("lost"));
     write_file_atomically(dir.file("lost"), "found\n", false);
     CHECK(type_of(dir.file("lost")) == "symlink");
-    CHECK(slurp(dir.file("elsewhere") / "x.txt") == "found\n");
+    CHECK(test::file_text(dir.file("elsewhere") / "x.txt") == "found\n");
     CHECK_FALSE(has_temporary(dir.file("elsewhere")));
   }
   SUBCASE("a loop of links is an error") {
@@ -231,7 +216,7 @@ TEST_CASE("missing parent directories are created (kept: scripts and the test su
   check_can_write(out, false);
   CHECK(type_of(dir.file("missing")) == "missing");  // the early check creates nothing
   write_file_atomically(out, "x\n", false);
-  CHECK(slurp(out) == "x\n");
+  CHECK(test::file_text(out) == "x\n");
   SUBCASE("a file in the way is named as before") {
     std::ofstream(dir.file("plain")) << "in the way\n";
     CHECK(error_of([&] { check_can_write(dir.file("plain") / "a" / "b.txt", true); }) ==
@@ -249,9 +234,9 @@ TEST_CASE("a directory, a socket and a regular file without overwrite are refuse
   CHECK(error_of([&] {
           write_file_atomically(dir.file("kept"), "x", false);
         }).find("exists; use --force") != std::string::npos);
-  CHECK(slurp(dir.file("kept")) == "kept\n");
+  CHECK(test::file_text(dir.file("kept")) == "kept\n");
   write_file_atomically(dir.file("kept"), "replaced\n", true);
-  CHECK(slurp(dir.file("kept")) == "replaced\n");
+  CHECK(test::file_text(dir.file("kept")) == "replaced\n");
 
   const int sock = ::socket(AF_UNIX, SOCK_STREAM, 0);
   REQUIRE(sock >= 0);

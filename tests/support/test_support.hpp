@@ -5,7 +5,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+
+#include "sigmatau/error.hpp"
 
 namespace sigmatau::test {
 
@@ -38,6 +42,25 @@ inline bool has_reference_data(const std::string& relative) {
   MESSAGE("SKIPPED: reference data not found at " << p.string()
                                                   << " (configure with -DSIGMATAU_DATA_DIR=...)");
   return false;
+}
+
+/// The whole content of a file ("" when it cannot be read).
+inline std::string file_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The message of the sigmatau::Error `f` throws, or "" when it throws none.
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace sigmatau::test
