@@ -65,6 +65,7 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   settings.threads = args.threads;
   settings.edf_model = parse_edf_model(args.edf);
   settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+  settings.stage = [&](const std::string& label) { progress.stage(label); };
   OutOfCoreResult result = compute_allan_curves_out_of_core(
       options, loaded.kind, loaded.to_si,
       [&](const TimingReport& timing) {

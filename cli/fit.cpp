@@ -367,6 +367,7 @@ LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
   OutOfCoreSettings settings;
   settings.threads = threads;
   settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+  settings.stage = [&](const std::string& label) { progress.stage(label); };
   OutOfCoreResult result = compute_allan_curves_out_of_core(
       options, unit.kind, unit.to_si,
       [&](const TimingReport& timing) {

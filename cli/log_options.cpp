@@ -348,18 +348,28 @@ void Progress::update(std::int64_t bytes_read, std::int64_t total_bytes) {
   last_s_ = t;
   const double mb = static_cast<double>(bytes_read) / 1e6;
   const double rate = mb / std::max(t - start_s_, 1e-9);
+  const std::string prefix = label_.empty() ? std::string("  ") : "  " + label_ + ": ";
   if (total_bytes > 0) {
-    std::fprintf(stderr, "\r  read %.1f of %.1f MB (%.0f%%), %.0f MB/s   ", mb,
+    std::fprintf(stderr, "\r%sread %.1f of %.1f MB (%.0f%%), %.0f MB/s   ", prefix.c_str(), mb,
                  static_cast<double>(total_bytes) / 1e6,
                  100.0 * static_cast<double>(bytes_read) / static_cast<double>(total_bytes), rate);
   } else {
-    std::fprintf(stderr, "\r  read %.1f MB, %.0f MB/s   ", mb, rate);
+    std::fprintf(stderr, "\r%sread %.1f MB, %.0f MB/s   ", prefix.c_str(), mb, rate);
   }
   drawn_ = true;
 }
 
+void Progress::stage(const std::string& label) {
+  if (!enabled_) return;
+  if (drawn_) std::fputs("\r\033[K", stderr);  // back to the line start, erase it
+  drawn_ = false;
+  label_ = label;
+  start_s_ = now_s();
+  last_s_ = -1;
+}
+
 void Progress::finish() {
-  if (drawn_) std::fprintf(stderr, "\r%60s\r", "");
+  if (drawn_) std::fputs("\r\033[K", stderr);  // back to the line start, erase it
   drawn_ = false;
 }
 

@@ -106,11 +106,15 @@ class Progress {
   Progress();
   ~Progress();
   void update(std::int64_t bytes_read, std::int64_t total_bytes);
+  /// Starts a new pass over the input, shown as "LABEL: read ..." with its own rate (a log
+  /// read several times restarts at 0 % each time, and says which pass it is).
+  void stage(const std::string& label);
   void finish();
 
  private:
   bool enabled_;
   bool drawn_ = false;
+  std::string label_;
   double start_s_;
   double last_s_ = -1;
 };

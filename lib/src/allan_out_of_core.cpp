@@ -89,6 +89,21 @@ OutOfCoreResult compute_allan_curves_out_of_core(
   std::size_t channels = 0;
   double tau0_s = 0;
   std::size_t group_begin = 0;
+  int pass = 0;
+  // "pass 2 of 4 (phase, channels 1-2 of 3)"; the first pass, before the channels are known,
+  // is "pass 1 (scan)".
+  auto announce = [&](const char* what, std::size_t begin, std::size_t end) {
+    if (!settings.stage) return;
+    ++pass;
+    if (channels == 0) {
+      settings.stage("pass " + std::to_string(pass) + " (" + what + ")");
+      return;
+    }
+    const std::size_t groups = (channels + threads - 1) / threads;
+    settings.stage("pass " + std::to_string(pass) + " of " + std::to_string(2 * groups) + " (" +
+                   what + ", channels " + std::to_string(begin + 1) + "-" + std::to_string(end) +
+                   " of " + std::to_string(channels) + ")");
+  };
   do {
     std::vector<PhaseSeriesBuilder> builders;
     const bool first = group_begin == 0;
@@ -103,6 +118,7 @@ OutOfCoreResult compute_allan_curves_out_of_core(
       }
       for (std::size_t c = group_begin; c < group_end; ++c) builders[c - group_begin].scan(block.values[c]);
     };
+    announce("scan", group_begin, std::min<std::size_t>(channels, group_begin + threads));
     const TimingReport timing = read_pass(log, to_si, settings.progress, scan,
                                           first ? &result.channel_names : nullptr);
     if (builders.empty()) {
@@ -121,6 +137,7 @@ OutOfCoreResult compute_allan_curves_out_of_core(
     auto append = [&](SampleBlock& block) {
       for (std::size_t c = group_begin; c < group_end; ++c) builders[c - group_begin].append(block.values[c]);
     };
+    announce("phase", group_begin, group_end);
     read_pass(log, to_si, settings.progress, append, nullptr);
     std::vector<PhaseSeries> series;
     for (auto& b : builders) {

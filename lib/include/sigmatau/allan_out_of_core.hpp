@@ -51,6 +51,10 @@ struct OutOfCoreSettings {
   EdfModel edf_model = EdfModel::greenhall;  ///< EDF of the intervals (see equivalent_dof)
   /// Called once per read pass with (bytes read, total bytes or -1), after each block.
   std::function<void(std::int64_t, std::int64_t)> progress;
+  /// Called before each read pass with what it is for: "pass 1 (scan)", then e.g. "pass 2 of 4
+  /// (phase, channels 1-2 of 3)": the file is read twice per group of `threads` channels, so a
+  /// progress display restarts at 0 % that many times.
+  std::function<void(const std::string&)> stage;
 };
 
 struct OutOfCoreResult {
