@@ -20,6 +20,10 @@ constexpr std::size_t kMedianWindow = 100000;
 /// An interval of 2 nominal periods is one missing sample; 1.5 is halfway between 1 and 2, so
 /// jitter of up to +-50 % of a period is not mistaken for a gap.
 constexpr double kGapFactor = 1.5;
+/// An interval under this fraction of the nominal one is short. Together with the gaps it tells
+/// jittered stamps (as many short intervals as long ones: the samples are all there) from lost
+/// samples (no short intervals).
+constexpr double kShortFactor = 0.5;
 /// Gaps stored in the report (all are counted).
 constexpr std::size_t kMaxStoredGaps = 1000;
 /// Segments kept under GapPolicy::split: 8 MB of row indices at most (bounded memory); a log
@@ -327,6 +331,7 @@ void TimingAccumulator::classify(Classified& c, double nominal_s, std::int64_t r
     c.breaks.push_back(row);
   }
   if (!(dt_s > 0)) return;  // counted in non_increasing
+  if (nominal_s > 0 && dt_s < kShortFactor * nominal_s) ++c.short_count;
   if (gap) {
     ++c.gap_count;
     if (c.gaps.size() < kMaxStoredGaps) c.gaps.push_back({row, line, start_s, dt_s});
@@ -377,6 +382,9 @@ void TimingAccumulator::finish() {
             "column (--time-column, --time-unit), or use --gaps report to analyse the rows as "
             "if contiguous");
   }
+  static const std::string gap_advice =
+      "; use --gaps split to analyse the contiguous segments apart, --gaps fill to "
+      "interpolate the missing samples, or --gaps report to analyse the log as if contiguous";
   throw ParseError(
       file_, first->line, 0,
       "time stamp gap of " + ms(first->length_s) + " (" +
@@ -392,9 +400,18 @@ void TimingAccumulator::finish() {
                            " stamp" + (non_increasing_ == 1 ? "" : "s") + ", the first at line " +
                            std::to_string(first_ni_line_) + " (rows out of order?)"
                      : std::string()) +
-          "; use --gaps split to analyse the contiguous segments apart, --gaps fill to "
-          "interpolate the missing samples, or --gaps report to analyse the log as if "
-          "contiguous");
+          (2 * classified_.short_count >= classified_.gap_count ? jitter_advice() : gap_advice));
+}
+
+std::string TimingAccumulator::jitter_advice() const {
+  const double mean_rate_hz = mean_all_ > 0 ? 1.0 / mean_all_ : 0;
+  char rate[64];
+  std::snprintf(rate, sizeof rate, "%.6g Hz", mean_rate_hz);
+  return "; " + std::to_string(classified_.short_count) +
+         " intervals are also under half the nominal one, so these look like jittered time "
+         "stamps (receive times?) rather than lost samples: --gaps report analyses the rows as "
+         "contiguous, and --rate fixes the interval (the mean interval says " + rate +
+         "); --gaps fill would invent samples";
 }
 
 TimingReport TimingAccumulator::report() const {

@@ -99,6 +99,9 @@ class TimingAccumulator {
     std::vector<Gap> gaps;
     double largest_gap_s = 0;
     std::int64_t largest_gap_line = 0;
+    /// Positive intervals under half the nominal one: lost samples make none, jittered stamps
+    /// (receive times) about as many as their "gaps".
+    std::int64_t short_count = 0;
     std::vector<std::int64_t> breaks;  // rows starting a segment (GapPolicy::split only)
     std::int64_t regular = 0;  // Welford over regular intervals
     double mean = 0;
@@ -108,6 +111,8 @@ class TimingAccumulator {
   void classify(Classified& c, double nominal_s, std::int64_t row, std::int64_t line,
                 double start_s, double dt_s) const;
   void freeze();
+  /// The end of the gap error when the gaps look like jittered stamps (see kShortFactor).
+  std::string jitter_advice() const;
 
   bool has_time_ = false;
   double divisor_ = 1;  // file unit -> s (divided by, so ms -> s is exactly rounded)

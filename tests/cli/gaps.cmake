@@ -25,6 +25,13 @@ endif()
 sigmatau_cli_test(NAME cli_gaps_default_is_error EXIT 2
   STDERR "gap.csv:10: .*time stamp gap of 40 ms.*--gaps split.*--gaps fill.*--gaps report"
   ARGS adev ${gap_small} --time-column t_ms --time-unit ms)
+# Stamps jittered +-4 ms around 100 Hz (receive times; no sample is missing): as many intervals
+# under half the nominal one as "gaps" over 1.5 of it, so the error says jitter, points to
+# --gaps report and --rate, and warns that fill would invent samples (review D, finding 12).
+# Lost samples (gap.csv, restart.csv) make no short intervals and keep the split/fill advice.
+sigmatau_cli_test(NAME cli_gaps_jitter_is_not_loss EXIT 2
+  STDERR "jittered_stamps_100Hz.csv:15: time stamp gap .*42 gaps in all.*25 intervals are also under half the nominal one, so these look like jittered time stamps .*--gaps report .*--rate .*mean interval says 99\\.9169 Hz.*--gaps fill would invent samples"
+  ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/jittered_stamps_100Hz.csv --time-column t)
 sigmatau_cli_test(NAME cli_gaps_default_error_restart EXIT 2
   STDERR "restart.csv:1002: .*time stamp gap of 5\\.01 s.*before data row 1000"
   ARGS adev ${gap_log} --time-column t_ms --time-unit ms)
