@@ -400,6 +400,9 @@ void TimingAccumulator::finish() {
                            " stamp" + (non_increasing_ == 1 ? "" : "s") + ", the first at line " +
                            std::to_string(first_ni_line_) + " (rows out of order?)"
                      : std::string()) +
+          (skipped_ > 0 ? "; " + std::to_string(skipped_) + " row" + (skipped_ == 1 ? " was" : "s were") +
+                              " dropped by --nonfinite skip, and each leaves such a gap"
+                        : std::string()) +
           (2 * classified_.short_count >= classified_.gap_count ? jitter_advice() : gap_advice));
 }
 

@@ -162,6 +162,8 @@ awk 'BEGIN { print "t,x"; for (i = 0; i < 200; i++) {
   printf "%.2f,%s\n", i / 100, v } }' >"$W/nonfinite.csv"
 run adev "$W/nonfinite.csv" --time-column t
 expect 2 "nonfinite\.csv:52:2: non-finite value"
+run adev "$W/nonfinite.csv" --time-column t --nonfinite skip
+expect 2 "nonfinite\.csv:53: time stamp gap .*2 rows were dropped by --nonfinite skip, and each leaves such a gap"
 run adev "$W/nonfinite.csv" --time-column t --nonfinite skip --gaps split
 expect 0 "note: .*nonfinite\.csv: 2 rows with a non-finite value skipped \(--nonfinite skip\)"
 grep -q "198 samples" "$W/.stdout" || fail "expected 198 samples: $(head -1 "$W/.stdout")"
