@@ -484,6 +484,27 @@ void run_adev(const AdevArguments& args) {
                        "float32); its deviations are 0 and say nothing about the sensor");
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
+  // A noise type that jumps at one tau (a spectral line read as another type) sets that
+  // point's EDF and interval from the jumped type: said, since the interval looks too good.
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (const AllanCurve& curve : curves[c]) {
+      for (const std::size_t i : isolated_noise_types(curve)) {
+        const CurvePoint& p = curve.points[i];
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "channel %s %s: the noise type at %g s (alpha %d) differs from both "
+                      "neighbours (alpha %d), and its EDF (%.4g, against %.4g and %.4g) and "
+                      "interval follow it; a periodic component (a line in `psd`) does this",
+                      loaded.log.channel_names[c].c_str(),
+                      std::string(to_string(curve.statistic)).c_str(), p.value.tau_s,
+                      p.confidence.noise.alpha, curve.points[i - 1].confidence.noise.alpha,
+                      p.confidence.edf, curve.points[i - 1].confidence.edf,
+                      curve.points[i + 1].confidence.edf);
+        warnings.push_back(text);
+        std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+      }
+    }
+  }
   // load_channels resolved the units; the stream and out-of-core paths do it here.
   if (loaded.channel_units.size() != loaded.log.channel_names.size()) resolve_channel_units(args.log, loaded);
   const std::vector<OutputUnit> units = output_units(loaded, args.out_unit);

@@ -56,4 +56,13 @@ std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const TauSpec& taus, double confidence_level, unsigned threads = 0,
     EdfModel edf_model = EdfModel::greenhall);
 
+/// Points whose identified noise type differs by 2 or more from both neighbours, the two
+/// neighbours agreeing (white PM at one tau between white FM on either side). Power-law noise
+/// changes type gradually along a curve; an isolated jump is usually a periodic component (a
+/// spectral line) that the lag-1 autocorrelation reads as another noise type, and the point's
+/// EDF, hence its interval, follows the type read (44x the neighbours' EDF on the HiPNUC CH104
+/// log's gyro at 2.56 s, a 0.2 Hz line). Indices into curve.points; the first and last points
+/// are never flagged.
+std::vector<std::size_t> isolated_noise_types(const AllanCurve& curve);
+
 }  // namespace sigmatau
