@@ -103,7 +103,7 @@ std::string row(const std::vector<std::string>& cells) {
 }
 
 std::string table(const std::vector<ComplianceItem>& items, const DataSheet& sheet,
-                  const std::string& result) {
+                  const std::string& result, double confidence) {
   std::ostringstream out;
   out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
       << result << "; pass: upper bound within the limit, marginal: estimate within but "
@@ -116,7 +116,9 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
            i.measured.quantity == MeasuredQuantity::bias_instability ||
            i.measured.quantity == MeasuredQuantity::rate_random_walk;
   });
-  if (noise_terms) out << "# " << kGateConfidenceNote << "\n";
+  if (const std::string note = gate_confidence_note(confidence); noise_terms && !note.empty()) {
+    out << "# " << note << "\n";
+  }
   out << row({"parameter", "verdict", "measured", "upper bound", "limit", "margin", "upper"});
   std::vector<const ComplianceItem*> informational;
   for (const auto& item : items) {
@@ -174,7 +176,14 @@ void run_check(const CheckArguments& args) {
   }
   if (!args.output.empty()) check_can_write(args.output, args.force);
   const DataSheet sheet = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
-  const auto measured = measured_parameters_from_json(read_text_file(args.result), args.result);
+  const std::string result_text = read_text_file(args.result);
+  const auto measured = measured_parameters_from_json(result_text, args.result);
+  // The intervals' level, as fit and analyze write it (68.3 % when absent).
+  double confidence = 0.683;
+  if (const auto doc = nlohmann::json::parse(result_text, nullptr, false);
+      doc.is_object() && doc.contains("confidence") && doc["confidence"].is_number()) {
+    confidence = doc["confidence"].get<double>();
+  }
   ComplianceOptions options;
   options.convention = parse_density_convention(args.convention);
   const auto items = check_compliance(measured, sheet, options);
@@ -193,7 +202,7 @@ void run_check(const CheckArguments& args) {
     doc["version"] = SIGMATAU_VERSION;
     out << doc.dump(1) << "\n";
   } else {
-    out << table(items, sheet, args.result);
+    out << table(items, sheet, args.result, confidence);
   }
   if (args.output.empty()) {
     std::cout << out.str();

@@ -102,6 +102,20 @@ TEST_CASE("the verdict rule under the compliance table advises --ci 0.95 for a g
     CHECK(text.find("--ci 0.95") != std::string::npos);
     CHECK(text.find("68.3 % interval") != std::string::npos);
   }
+  // A result already at 95 % gets the rule without the advice (it would be wrong there).
+  nlohmann::json at95 = results_with(items);
+  at95["confidence"] = 0.95;
+  const ReportFiles files95 = build_report(at95.dump(), options);
+  for (const char* name : {"summary.md", "report.html"}) {
+    CAPTURE(name);
+    const std::string& text = files95.files.at(name);
+    CHECK(text.find("95 % interval is within the limit") != std::string::npos);
+    CHECK(text.find("--ci 0.95") == std::string::npos);
+  }
+  CHECK(gate_confidence_note(0.683).find("At 68.3 % a pass") == 0);
+  CHECK(gate_confidence_note(0.9).find("At 90 % a pass") == 0);
+  CHECK(gate_confidence_note(0.95).empty());
+  CHECK(gate_confidence_note(0.99).empty());
 }
 
 TEST_CASE("the ADEV plot names the sheet's white-noise line after the printed field") {

@@ -35,4 +35,14 @@ bool any_typical_limit(const std::vector<ComplianceItem>& items) {
   return false;
 }
 
+std::string gate_confidence_note(double confidence) {
+  if (confidence >= 0.95 - 1e-9) return "";
+  char level[32];
+  std::snprintf(level, sizeof level, "%.3g", 100 * confidence);
+  return std::string("At ") + level +
+         " % a pass is a statement at about one sigma, and the bound of a term not detected "
+         "(conditional on its non-detection) falls below the truth more often than that; for a "
+         "gate, fit or analyze with --ci 0.95.";
+}
+
 }  // namespace sigmatau

@@ -45,10 +45,12 @@ bool typical_limit_used(const json& compliance) {
 
 /// The verdict rule, said under each compliance table, with how strong a pass is.
 std::string verdict_rule(const json& results) {
-  return "pass: the upper bound of the " + fmt(100 * results.value("confidence", 0.683), 3) +
+  const double confidence = results.value("confidence", 0.683);
+  const std::string note = gate_confidence_note(confidence);
+  return "pass: the upper bound of the " + fmt(100 * confidence, 3) +
          " % interval is within the limit; marginal: the estimate is within the limit but its "
-         "bound is not; fail: the estimate exceeds the limit. " +
-         std::string(kGateConfidenceNote);
+         "bound is not; fail: the estimate exceeds the limit." +
+         (note.empty() ? std::string() : " " + note);
 }
 
 /// Under the summary table: B beside the floor a data sheet prints (a STIM300 at its typical

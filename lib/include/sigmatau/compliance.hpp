@@ -145,11 +145,9 @@ inline constexpr const char* kTypicalLimitNote =
     "limits marked (typ) are typical values, not guaranteed maxima: a unit at its typical noise "
     "exceeds them about half the time";
 
-/// Said where the verdict rule is explained: how strong a pass is at the default confidence.
-inline constexpr const char* kGateConfidenceNote =
-    "At the default 68.3 % a pass is a one-sigma statement, and the bound of a term not "
-    "detected (conditional on its non-detection) falls below the truth more often than that; "
-    "for a gate, fit or analyze with --ci 0.95.";
+/// Said where the verdict rule is explained: how strong a pass is at the intervals' two-sided
+/// `confidence` (68.3 % by default); "" from 95 % up, where the advice is already followed.
+std::string gate_confidence_note(double confidence);
 
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
