@@ -109,7 +109,8 @@ long leading_number(std::string_view& text) {
 // which is what /dev/stdout, /dev/fd/N and a shell's process substitution lead to: `pid` and
 // `descriptor` then say whose descriptor and which.
 bool descriptor_entry(const std::filesystem::path& path, long& pid, int& descriptor) {
-  std::string_view name = path.filename().native();
+  const std::filesystem::path filename = path.filename();  // the view below must not outlive it
+  std::string_view name = filename.native();
   const long number = leading_number(name);
   if (number < 0 || !name.empty()) return false;
   char resolved[PATH_MAX];
