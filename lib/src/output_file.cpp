@@ -241,8 +241,11 @@ void check_can_create_in(const std::filesystem::path& path) {
   check_can_create_in(path, path.string());
 }
 
-void check_can_write(const std::filesystem::path& path, bool overwrite) {
-  const Target target = resolve_target(path);
+namespace {
+
+// check_can_write on a target already resolved (the constructor below resolves it once).
+void check_can_write_target(const std::filesystem::path& path, const Target& target,
+                            bool overwrite) {
   refuse_unwritable_kinds(path, target);
   switch (target.kind) {
     case TargetKind::descriptor:
@@ -258,6 +261,20 @@ void check_can_write(const std::filesystem::path& path, bool overwrite) {
       break;
   }
   check_can_create_in(target.path, describe(path, target));
+}
+
+bool written_straight_into(TargetKind kind) {
+  return kind == TargetKind::descriptor || kind == TargetKind::device_or_pipe;
+}
+
+}  // namespace
+
+void check_can_write(const std::filesystem::path& path, bool overwrite) {
+  check_can_write_target(path, resolve_target(path), overwrite);
+}
+
+bool is_stream_output(const std::filesystem::path& path) {
+  return written_straight_into(resolve_target(path).kind);
 }
 
 std::filesystem::path check_output_directory(const std::filesystem::path& dir, bool overwrite) {
@@ -279,10 +296,10 @@ std::filesystem::path check_output_directory(const std::filesystem::path& dir, b
 
 AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)
     : path_(std::move(path)), overwrite_(overwrite) {
-  check_can_write(path_, overwrite_);
   const Target target = resolve_target(path_);
+  check_can_write_target(path_, target, overwrite_);
   target_ = target.path;
-  if (target.kind == TargetKind::descriptor || target.kind == TargetKind::device_or_pipe) {
+  if (written_straight_into(target.kind)) {
     // Straight in: writing to a device or pipe replaces nothing, and renaming over one would
     // destroy it (as root, /dev/null became a regular file).
     fd_ = target.kind == TargetKind::descriptor
@@ -361,12 +378,6 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   AtomicOutputFile file(path, overwrite);
   file.write(content);
   file.commit();
-}
-
-bool is_stream_output(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);  // follows links
-  return !ec && (std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status));
 }
 
 }  // namespace sigmatau

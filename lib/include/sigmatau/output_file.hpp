@@ -31,9 +31,9 @@ namespace sigmatau {
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,
                            bool overwrite);
 
-/// Whether `path` (its symbolic links followed) names an existing character device or FIFO
-/// (/dev/null, /dev/stdout into a pipe or terminal, a process substitution's /dev/fd/N): an
-/// output written straight into, beside which no sibling file ("<path>.json") can go.
+/// Whether `path` (its symbolic links followed) is an output written straight into by the rules
+/// above (a character device, a FIFO or an open descriptor: /dev/null, /dev/stdout, a process
+/// substitution's /dev/fd/N), beside which no sibling file ("<path>.json") can go.
 bool is_stream_output(const std::filesystem::path& path);
 
 /// Throws, early, before long work starts, the Error write_file_atomically would throw for
