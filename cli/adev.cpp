@@ -360,41 +360,29 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
   return curves;
 }
 
-/// Constant channels of a log in memory (check_stuck: a run as long as the channel); false
-/// when the samples are not in memory. Fills `constant` and `value` per channel.
-bool find_constant(const LoadedChannels& loaded, std::vector<bool>& constant,
-                   std::vector<std::optional<std::string>>& value) {
-  const auto& channels = loaded.log.channels;
-  constant.assign(channels.size(), false);
-  value.assign(channels.size(), std::nullopt);
-  for (std::size_t c = 0; c < channels.size(); ++c) {
-    const auto w = check_stuck(channels[c], loaded.log.channel_names[c]);
-    if (w && w->longest_rows == static_cast<std::int64_t>(channels[c].size())) {
-      constant[c] = true;
-      char text[40];
-      std::snprintf(text, sizeof text, "%.9g", w->value / (loaded.to_si != 0 ? loaded.to_si : 1.0));
-      value[c] = text;
-    }
+/// The value of each constant channel of a log in memory (whole_run_value of its run checks),
+/// in the input unit; nullopt for the others.
+std::vector<std::optional<double>> constant_values(const LoadedChannels& loaded) {
+  std::vector<std::optional<double>> values;
+  for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
+    const auto& channel = loaded.log.channels[c];
+    auto value = whole_run_value(check_runs(channel, loaded.log.channel_names[c]),
+                                 static_cast<std::int64_t>(channel.size()));
+    if (value) *value /= (loaded.to_si != 0 ? loaded.to_si : 1.0);
+    values.push_back(value);
   }
-  return true;
+  return values;
 }
 
-/// Constant channels from their curves, when the samples were never in memory: every
-/// deviation of every statistic is 0 (stream and out-of-core paths).
-std::vector<bool> constant_by_curves(const std::vector<std::vector<AllanCurve>>& curves) {
-  std::vector<bool> constant;
-  for (const auto& channel : curves) {
-    bool any_point = false;
-    bool all_zero = true;
-    for (const auto& curve : channel) {
-      for (const auto& p : curve.points) {
-        any_point = true;
-        all_zero = all_zero && p.value.dev == 0;
-      }
-    }
-    constant.push_back(any_point && all_zero);
+/// Whether a channel is constant, from its curves when its samples were never in memory
+/// (stream and out-of-core paths): some point computed, and every deviation 0.
+bool constant_by_curves(const std::vector<AllanCurve>& channel) {
+  bool any_point = false;
+  for (const AllanCurve& curve : channel) {
+    if (!all_deviations_zero(curve)) return false;
+    any_point = any_point || !curve.points.empty();
   }
-  return constant;
+  return any_point;
 }
 
 void run_adev(const AdevArguments& args) {
@@ -440,11 +428,9 @@ void run_adev(const AdevArguments& args) {
   std::size_t samples = 0;
   std::string partial_error;
   std::vector<std::vector<AllanCurve>> curves;
-  // Constant channels: from the samples (check_stuck) when they are in memory, else from the
-  // curves (every deviation 0).
-  bool constant_found = false;
-  std::vector<bool> constant;
-  std::vector<std::optional<std::string>> constant_value;
+  // Constant channels: their value from the samples when they are in memory (else empty, and
+  // told from the curves below: every deviation 0).
+  std::vector<std::optional<double>> constant_value;
   if (out_of_core) {
     curves = run_out_of_core(args, stats, taus, loaded, samples);
   } else if (stream) {
@@ -456,11 +442,11 @@ void run_adev(const AdevArguments& args) {
     }
   } else if (loaded = load_channels(args.log); loaded.log.timing.segment_starts.size() > 1) {
     samples = loaded.log.channels.front().size();
-    constant_found = find_constant(loaded, constant, constant_value);
+    constant_value = constant_values(loaded);
     curves = split_curves(args, stats, taus, loaded);
   } else {
     samples = loaded.log.channels.front().size();
-    constant_found = find_constant(loaded, constant, constant_value);
+    constant_value = constant_values(loaded);
     std::vector<PhaseSeries> series;
     series.reserve(loaded.log.channels.size());
     for (auto& channel : loaded.log.channels) {
@@ -470,18 +456,20 @@ void run_adev(const AdevArguments& args) {
     curves = curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,
                                   args.log.input);
   }
-  if (!constant_found) {
-    constant = constant_by_curves(curves);
-    constant_value.assign(constant.size(), std::nullopt);
-  }
   std::vector<std::string> warnings;
-  for (std::size_t c = 0; c < constant.size(); ++c) {
-    if (!constant[c]) continue;
-    warnings.push_back("channel " + loaded.log.channel_names[c] + " is constant (" +
-                       (constant_value[c] ? "every value is " + *constant_value[c]
-                                          : std::string("every deviation is 0")) +
-                       "): a stuck sensor, or precision lost (e.g. a large offset stored as "
-                       "float32); its deviations are 0 and say nothing about the sensor");
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    std::string how;
+    if (c < constant_value.size()) {
+      if (!constant_value[c]) continue;
+      char text[40];
+      std::snprintf(text, sizeof text, "%.9g", *constant_value[c]);
+      how = "every value is " + std::string(text);
+    } else {
+      if (!constant_by_curves(curves[c])) continue;
+      how = "every deviation is 0";
+    }
+    warnings.push_back(constant_channel_text(loaded.log.channel_names[c], how) +
+                       "; its deviations are 0 and say nothing about the sensor");
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
   // A noise type that jumps at one tau (a spectral line read as another type) sets that

@@ -308,13 +308,6 @@ Sensor sensor_by_name(const std::string& name, const std::string& input) {
               "unit; choose the sensor columns with --columns");
 }
 
-/// True when every deviation of the curve is 0: the channel never changed (a stuck sensor, or a
-/// column that is not a signal). There is nothing to fit, and a longer log would not help.
-bool constant_curve(const AllanCurve& curve) {
-  return std::all_of(curve.points.begin(), curve.points.end(),
-                     [](const CurvePoint& p) { return p.value.dev == 0; });
-}
-
 void warn_constant(const std::string& input, const std::string& channel) {
   std::cerr << "sigmatau: warning: " << input << ": channel " << channel
             << " is constant (every OADEV value is 0: a stuck sensor, or not a signal); left out of "
@@ -414,7 +407,7 @@ void run_fit(const FitArguments& args) {
                   "it): " + ignored + " would be ignored; leave them out, or fit the log itself");
     }
     for (const auto& saved : saved_curves) {
-      if (constant_curve(saved.curve)) {
+      if (all_deviations_zero(saved.curve)) {
         warn_constant(args.log.input, saved.channel);
         continue;
       }
@@ -443,7 +436,7 @@ void run_fit(const FitArguments& args) {
                         ? oadev_out_of_core(args.log, args.threads)
                         : oadev_in_memory(args.log, args.threads);
     for (std::size_t i = 0; i < log.curves.size(); ++i) {
-      if (constant_curve(log.curves[i])) {
+      if (all_deviations_zero(log.curves[i])) {
         warn_constant(args.log.input, log.channel_names[i]);
         continue;
       }

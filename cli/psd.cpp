@@ -11,6 +11,7 @@
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "psd_stream.hpp"
+#include "sigmatau/data_checks.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/plot.hpp"
@@ -141,9 +142,9 @@ void run_psd(const PsdArguments& args) {
     if (!computed.constant_value[c]) continue;
     char value[40];
     std::snprintf(value, sizeof value, "%.9g", *computed.constant_value[c]);
-    warnings.push_back("channel " + loaded.log.channel_names[c] + " is constant (every value is " +
-                       value + "): a stuck sensor, or precision lost (e.g. a large offset stored "
-                       "as float32); its PSD and noise density are rounding residue, not noise");
+    warnings.push_back(constant_channel_text(loaded.log.channel_names[c],
+                                             "every value is " + std::string(value)) +
+                       "; its PSD and noise density are rounding residue, not noise");
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
 

@@ -85,15 +85,6 @@ std::int64_t count_rows(const LogOptions& options) {
   return reader.timing().samples;
 }
 
-/// The value of a channel that is one run from start to end (`rows` long), from its run
-/// checks (check_runs / RunChecker); nullopt otherwise.
-std::optional<double> whole_run(const std::vector<DataWarning>& warnings, std::int64_t rows) {
-  for (const DataWarning& w : warnings) {
-    if (w.kind == DataWarningKind::stuck && w.longest_rows == rows) return w.value;
-  }
-  return std::nullopt;
-}
-
 /// The rate series of one channel, fed to its Welch accumulator with the arithmetic of the
 /// in-memory path (value x to_si, then increment x rate or (x[i+1] - x[i]) x rate). The values
 /// as read also go through a RunChecker, to tell a constant channel.
@@ -115,7 +106,7 @@ class ChannelFeed {
   PsdCurve result() const { return accumulator_.result(); }
 
   /// The value of a constant channel (as read), nullopt otherwise. Call once, at the end.
-  std::optional<double> constant_value() { return whole_run(runs_.finish(), rows_); }
+  std::optional<double> constant_value() { return whole_run_value(runs_.finish(), rows_); }
 
  private:
   WelchAccumulator accumulator_;
@@ -141,7 +132,7 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
   for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
     auto& channel = loaded.log.channels[c];
     // The samples are in SI here (load_channels): the constant value back in the input unit.
-    auto value = whole_run(check_runs(channel, loaded.log.channel_names[c]),
+    auto value = whole_run_value(check_runs(channel, loaded.log.channel_names[c]),
                            static_cast<std::int64_t>(channel.size()));
     if (value) *value /= loaded.to_si;
     out.constant_value.push_back(value);

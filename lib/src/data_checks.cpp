@@ -227,6 +227,19 @@ std::vector<DataWarning> check_runs(std::span<const double> values, const std::s
   return out;
 }
 
+std::optional<double> whole_run_value(const std::vector<DataWarning>& run_warnings,
+                                      std::int64_t rows) {
+  for (const DataWarning& w : run_warnings) {
+    if (w.kind == DataWarningKind::stuck && w.longest_rows == rows) return w.value;
+  }
+  return std::nullopt;
+}
+
+std::string constant_channel_text(const std::string& channel, const std::string& how) {
+  return "channel " + channel + " is constant (" + how +
+         "): a stuck sensor, or precision lost (e.g. a large offset stored as float32)";
+}
+
 std::optional<DataWarning> check_gyro_unit(const std::vector<std::span<const double>>& axes_si,
                                            const std::vector<std::string>& names,
                                            const std::string& declared_unit, double to_si) {

@@ -65,4 +65,9 @@ std::vector<std::vector<AllanCurve>> compute_allan_curves(
 /// are never flagged.
 std::vector<std::size_t> isolated_noise_types(const AllanCurve& curve);
 
+/// True when every deviation of the curve is 0 (also for a curve without points): the input
+/// never changed (a stuck sensor, precision lost, or a column that is not a signal), so the
+/// curve says nothing about noise.
+bool all_deviations_zero(const AllanCurve& curve);
+
 }  // namespace sigmatau

@@ -75,6 +75,17 @@ std::optional<DataWarning> check_stuck(std::span<const double> values, const std
 std::vector<DataWarning> check_runs(std::span<const double> values, const std::string& channel,
                                     const DataCheckOptions& options = {});
 
+/// The value of a channel that is one run of identical values from start to end: the stuck
+/// warning of check_runs / RunChecker::finish (or check_stuck) as long as the channel's `rows`;
+/// nullopt otherwise. Such a channel has no noise to measure (a stuck sensor, or precision lost).
+std::optional<double> whole_run_value(const std::vector<DataWarning>& run_warnings,
+                                      std::int64_t rows);
+
+/// "channel NAME is constant (HOW): a stuck sensor, or precision lost (e.g. a large offset
+/// stored as float32)", HOW e.g. "every value is 0.123"; the caller adds what it means for its
+/// results.
+std::string constant_channel_text(const std::string& channel, const std::string& how);
+
 /// check_runs on a channel delivered in pieces (a log read block by block): add() every value in
 /// order, then finish() returns what check_runs returns on the whole channel, bit for bit, in
 /// constant memory. Saturation runs are kept for the running minimum and maximum and dropped

@@ -1,4 +1,4 @@
-// Isolated noise-type jumps along a curve (see isolated_noise_types in allan_curve.hpp).
+// Checks of a computed curve (allan_curve.hpp): isolated noise-type jumps, a constant input.
 #include <cstdlib>
 
 #include "sigmatau/allan_curve.hpp"
@@ -15,6 +15,13 @@ std::vector<std::size_t> isolated_noise_types(const AllanCurve& curve) {
     if (before == after && std::abs(here - before) >= 2) found.push_back(i);
   }
   return found;
+}
+
+bool all_deviations_zero(const AllanCurve& curve) {
+  for (const CurvePoint& p : curve.points) {
+    if (p.value.dev != 0) return false;
+  }
+  return true;
 }
 
 }  // namespace sigmatau
