@@ -345,19 +345,10 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
   }
   const std::vector<TauSpec> specs = taus_per_statistic(taus, stats, longest,
                                                         1.0 / loaded.rate_hz, args.log.input);
-  bool same = true;
-  for (const auto& spec : specs) same = same && spec.seconds == specs.front().seconds;
-  if (same) {
-    return compute_segmented_allan_curves(channels, stats, specs.front(), args.ci, args.threads,
+  return curves_for_specs(specs, stats, [&](const std::vector<Statistic>& some, const TauSpec& t) {
+    return compute_segmented_allan_curves(channels, some, t, args.ci, args.threads,
                                           parse_edf_model(args.edf));
-  }
-  std::vector<std::vector<AllanCurve>> curves(channels.size());
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    auto one = compute_segmented_allan_curves(channels, {stats[s]}, specs[s], args.ci, args.threads,
-                                              parse_edf_model(args.edf));
-    for (std::size_t c = 0; c < channels.size(); ++c) curves[c].push_back(std::move(one[c].front()));
-  }
-  return curves;
+  });
 }
 
 /// The value of each constant channel of a log in memory (whole_run_value of its run checks),

@@ -82,8 +82,7 @@ void note_stream_skipped(const TauSpec& taus, const std::vector<Statistic>& stat
   }
 }
 
-/// compute_allan_curves with the taus of taus_per_statistic: one call when every statistic has
-/// the same list (the usual case), else one per statistic.
+/// compute_allan_curves with the taus of taus_per_statistic.
 std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
                                                           const std::vector<Statistic>& stats,
                                                           const TauSpec& taus, double ci,
@@ -92,13 +91,22 @@ std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<Phas
   const std::vector<TauSpec> specs = taus_per_statistic(
       taus, stats, static_cast<std::int64_t>(series.front().size()), series.front().tau0_s(),
       input);
+  return curves_for_specs(specs, stats, [&](const std::vector<Statistic>& some, const TauSpec& t) {
+    return compute_allan_curves(series, some, t, ci, threads, edf_model);
+  });
+}
+
+std::vector<std::vector<AllanCurve>> curves_for_specs(const std::vector<TauSpec>& specs,
+                                                      const std::vector<Statistic>& stats,
+                                                      const CurveComputer& compute) {
   bool same = true;
   for (const auto& spec : specs) same = same && spec.seconds == specs.front().seconds;
-  if (same) return compute_allan_curves(series, stats, specs.front(), ci, threads, edf_model);
-  std::vector<std::vector<AllanCurve>> curves(series.size());
+  if (same) return compute(stats, specs.front());
+  std::vector<std::vector<AllanCurve>> curves;
   for (std::size_t s = 0; s < stats.size(); ++s) {
-    auto one = compute_allan_curves(series, {stats[s]}, specs[s], ci, threads, edf_model);
-    for (std::size_t c = 0; c < series.size(); ++c) curves[c].push_back(std::move(one[c].front()));
+    auto one = compute({stats[s]}, specs[s]);
+    curves.resize(one.size());
+    for (std::size_t c = 0; c < one.size(); ++c) curves[c].push_back(std::move(one[c].front()));
   }
   return curves;
 }

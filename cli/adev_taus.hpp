@@ -4,6 +4,7 @@
 // reach, the skipped ones are noted on stderr, and a tau that no statistic reaches stays an
 // Error (exit 2).
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,18 @@ void note_stream_skipped(const TauSpec& taus, const std::vector<Statistic>& stat
                          const std::vector<std::vector<AllanCurve>>& curves, double rate_hz,
                          const std::string& input);
 
-/// compute_allan_curves with the taus of taus_per_statistic (one call when every statistic has
-/// the same list, else one per statistic). Returns curves[channel][statistic].
+/// Computes the curves of `stats` at their `specs` (one per statistic, from
+/// taus_per_statistic) with `compute(statistics, taus)` (curves[channel][statistic] of those):
+/// one call when every statistic has the same taus, else one per statistic, merged. Returns
+/// curves[channel][statistic].
+using CurveComputer = std::function<std::vector<std::vector<AllanCurve>>(
+    const std::vector<Statistic>&, const TauSpec&)>;
+std::vector<std::vector<AllanCurve>> curves_for_specs(const std::vector<TauSpec>& specs,
+                                                      const std::vector<Statistic>& stats,
+                                                      const CurveComputer& compute);
+
+/// compute_allan_curves with the taus of taus_per_statistic (curves_for_specs). Returns
+/// curves[channel][statistic].
 std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<PhaseSeries>& series,
                                                           const std::vector<Statistic>& stats,
                                                           const TauSpec& taus, double ci,
