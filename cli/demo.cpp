@@ -38,11 +38,6 @@ struct DemoArguments {
   double scale = 0.8;
 };
 
-/// "data sheet bosch_bmi088 (Bosch Sensortec BMI088)", as simulate_spec.cpp names a sheet.
-std::string sheet_label(const DataSheet& sheet) {
-  return "data sheet " + sheet.name + " (" + sheet.manufacturer + " " + sheet.part + ")";
-}
-
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
   std::string s;
   for (const auto& item : items) s += (s.empty() ? "" : separator) + item;
@@ -92,13 +87,13 @@ DemoNoise demo_noise(const DataSheet& sheet, DensityConvention convention, doubl
     const std::string what(to_string(sensor));
     if (const std::string gap = sheet_noise_gap(sheet, sensor, convention); !gap.empty()) {
       gaps.push_back(gap);
-      out.notes.push_back(sheet_label(sheet) + " " + gap + ", so the demo leaves the " + what +
+      out.notes.push_back(sheet.label() + " " + gap + ", so the demo leaves the " + what +
                           " out (it would be simulated without noise)");
       continue;
     }
     const SheetNoise noise = simulation_noise_from_data_sheet(sheet, sensor, convention);
     if (!noise.has_white)
-      out.notes.push_back(sheet_label(sheet) + " prints no white noise for the " + what +
+      out.notes.push_back(sheet.label() + " prints no white noise for the " + what +
                           ", so the demo simulates the " + what + " with " +
                           join(noise.read, " and ") + " only (left out: " +
                           join(noise.left_out, ", ") +
@@ -119,7 +114,7 @@ DemoNoise demo_noise(const DataSheet& sheet, DensityConvention convention, doubl
     for (auto& term : non_typical_terms(sheet, sensor)) out.non_typical.push_back(std::move(term));
   }
   if (!out.config.gyro && !out.config.accel)
-    throw Error(sheet_label(sheet) + " " + join(gaps, " and ") +
+    throw Error(sheet.label() + " " + join(gaps, " and ") +
                 ", so the demo has nothing to simulate; pick a sheet that prints noise terms "
                 "(sigmatau specs list) or simulate a unit with sigmatau simulate --model / "
                 "--accel-model");

@@ -19,11 +19,6 @@ std::string model_example(Sensor sensor) {
                                 : "\"N=60 ug/sqrt(Hz), B=0.05 mg\"";
 }
 
-/// "ADI ADIS16465 (adi_adis16465)".
-std::string sheet_label(const DataSheet& sheet) {
-  return "data sheet " + sheet.name + " (" + sheet.manufacturer + " " + sheet.part + ")";
-}
-
 /// Splits "a; b" as triad_from_data_sheet joins its bias origins.
 void append_parts(std::vector<std::string>& out, const std::string& text) {
   for (std::size_t start = 0; start < text.size();) {
@@ -71,7 +66,7 @@ SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor senso
   const std::string what = sensor_name(sensor);
   if (const std::string gap = sheet_noise_gap(sheet, sensor, convention); !gap.empty())
     throw Error(
-        sheet_label(sheet) + " " + gap + ", so " + (sheet.sensor(sensor) ? "the " : "its ") + what +
+        sheet.label() + " " + gap + ", so " + (sheet.sensor(sensor) ? "the " : "its ") + what +
         " would be simulated without noise; give the " + what + " terms with " +
         model_option(sensor) + ", e.g. " + model_example(sensor) + " (it replaces the sheet's " +
         what + " terms), or leave " + what + " out of --sensors");
@@ -93,7 +88,7 @@ SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor senso
 std::string sheet_noise_warning(const DataSheet& sheet, Sensor sensor, const SheetNoise& noise) {
   if (noise.has_white) return {};
   const std::string what = sensor_name(sensor);
-  return "warning: " + sheet_label(sheet) + " prints no white noise for the " + what +
+  return "warning: " + sheet.label() + " prints no white noise for the " + what +
          ", so the " + what + " is simulated with " + join(noise.read, " and ") +
          " only; left out: " + join(noise.left_out, ", ") + " (give " + model_option(sensor) +
          " to supply the " + what + " terms)";

@@ -359,6 +359,10 @@ const SensorSheet* DataSheet::sensor(Sensor which) const {
   return s ? &*s : nullptr;
 }
 
+std::string DataSheet::label() const {
+  return "data sheet " + name + " (" + manufacturer + " " + part + ")";
+}
+
 DataSheet parse_data_sheet(std::string_view yaml_text, const std::string& file) {
   const Reader r(file);
   YAML::Node root;

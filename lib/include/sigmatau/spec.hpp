@@ -132,6 +132,8 @@ struct DataSheet {
 
   /// The gyro or accel section, or nullptr when absent.
   const SensorSheet* sensor(Sensor which) const;
+  /// "data sheet bosch_bmi088 (Bosch Sensortec BMI088)", as messages name a sheet.
+  std::string label() const;
 };
 
 /// Parses a data sheet from YAML text. `file` names it in error messages. Throws ParseError
