@@ -182,9 +182,9 @@ std::string render_csv(const LoadedChannels& loaded, const std::vector<Statistic
                        const std::vector<std::vector<AllanCurve>>& curves,
                        const std::vector<OutputUnit>& units, const std::string& mode) {
   std::ostringstream out;
-  // The mode goes in a comment line only when it is not exact, so that exact CSV stays plain
-  // CSV (and a stream result is never mistaken for an exact one).
-  if (mode != "exact") out << "# mode: " << mode << "\n";
+  // The mode goes in a comment line only for an approximate (stream) result, so that exact CSV
+  // stays plain CSV and a stream result is never mistaken for an exact one; "" for exact.
+  if (!mode.empty()) out << "# mode: " << mode << "\n";
   out << "channel,statistic,unit,tau_s,m,n,alpha,edf,ci_low,dev,ci_high\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t s = 0; s < stats.size(); ++s) {
@@ -501,7 +501,7 @@ void run_adev(const AdevArguments& args) {
   }
   std::string text;
   if (args.format == "table") text = render_table(loaded, samples, stats, curves, units, mode_text);
-  if (args.format == "csv") text = render_csv(loaded, stats, curves, units, stream ? mode_text : "exact");
+  if (args.format == "csv") text = render_csv(loaded, stats, curves, units, stream ? mode_text : "");
   if (args.format == "json") text = render_json(loaded, samples, stats, curves, units, args.edf, mode, warnings);
   if (args.output.empty()) {
     std::cout << text;

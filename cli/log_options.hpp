@@ -75,8 +75,6 @@ struct LoadedChannels {
   std::vector<ChannelUnit> channel_units;
 };
 
-
-
 LoadedChannels load_channels(const LogArguments& args);
 
 /// The reader options of the arguments (validated as load_channels does).
@@ -86,14 +84,15 @@ LogOptions log_options_from(const LogArguments& args);
 /// is nothing to say): for a ROS bag read without --topic, the topic picked (the only
 /// sensor_msgs/Imu one) and the bag's topics with types and counts; for a bag whose messages
 /// arrived out of stamp order, how many were sorted within the reorder window and the largest
-/// lateness [s]; with --nonfinite skip, how many rows were dropped; for a bag whose recording was
-/// cut short, read under --truncated use, where it was cut and how many messages were used. Every path that reads a log
-/// (load_channels, adev's stream and out-of-core paths) calls it once.
+/// lateness [s]; with --nonfinite skip, how many rows were dropped; for a bag whose recording
+/// was cut short, read under --truncated use, where it was cut and how many messages were used;
+/// with --gaps report, the gaps found. Every path that reads a log (load_channels, adev's stream
+/// and out-of-core paths) calls it once.
 void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing);
 
 /// The dimension of a gyro's (`gyro`) or accelerometer's unit for data of `kind`: a rate
 /// (rad/s, m/s^2), or a per-sample amount for increments and phase (rad, m/s). For
-/// --gyro-unit / --accel-unit in `fit` and `analyze`.
+/// --gyro-unit / --accel-unit (fit, analyze, channel_units.hpp) and --kind checks.
 Dimension sensor_unit_dimension(bool gyro, DataKind kind);
 
 /// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.
