@@ -366,7 +366,7 @@ class Ros1Bag final : public BagBackend {
         return false;
       }
       if (data_cut) {
-        load_cut_chunk(pos, data_at, data_len);
+        load_cut_chunk(pos, data_at);
         return true;
       }
       scan_pos_ = data_at + data_len;
@@ -425,12 +425,11 @@ class Ros1Bag final : public BagBackend {
 
   /// An uncompressed chunk the file ends inside: its bytes up to the end of the file, whose
   /// complete records are read (next_in_chunk reports the cut at the first incomplete one).
-  void load_cut_chunk(std::int64_t pos, std::int64_t data_at, std::uint32_t data_len) {
+  void load_cut_chunk(std::int64_t pos, std::int64_t data_at) {
     chunk_pos_ = pos;
     chunk_data_at_ = data_at;
     codec_ = Codec::none;
     const auto have = static_cast<std::size_t>(file_.size() - data_at);
-    (void)data_len;
     chunk_.resize(have);
     file_.read(data_at, have, chunk_.data(), "chunk data");
     scan_pos_ = file_.size();
