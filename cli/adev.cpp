@@ -71,7 +71,11 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
       [&](const TimingReport& timing) {
         return resolve_rate_hz(args.log.rate_hz, timing, args.log.input);
       },
-      stats, taus, args.ci, settings);
+      stats,
+      [&](std::int64_t n_phase_points, double tau0_s) {
+        return taus_per_statistic(taus, stats, n_phase_points, tau0_s, args.log.input);
+      },
+      args.ci, settings);
   progress.finish();
   loaded.log.path = options.path;
   loaded.log.channel_names = std::move(result.channel_names);

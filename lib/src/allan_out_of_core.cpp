@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "allan_curve_assembly.hpp"
@@ -77,6 +78,18 @@ OutOfCoreResult compute_allan_curves_out_of_core(
     const std::function<double(const TimingReport&)>& rate_hz,
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
     const OutOfCoreSettings& settings) {
+  const auto same_for_all = [&](std::int64_t, double) {
+    return std::vector<TauSpec>(statistics.size(), taus);
+  };
+  return compute_allan_curves_out_of_core(log, kind, to_si, rate_hz, statistics, same_for_all,
+                                          confidence_level, settings);
+}
+
+OutOfCoreResult compute_allan_curves_out_of_core(
+    const LogOptions& log, DataKind kind, double to_si,
+    const std::function<double(const TimingReport&)>& rate_hz,
+    const std::vector<Statistic>& statistics, const TausForLength& taus_for,
+    double confidence_level, const OutOfCoreSettings& settings) {
   if (log.path == "-") {
     throw Error("exact out-of-core mode reads the log twice and needs a file, not stdin "
                 "(use --mode stream for a pipe)");
@@ -88,6 +101,7 @@ OutOfCoreResult compute_allan_curves_out_of_core(
   // Channel names and the rate come from the first full pass (the first group's pass 1).
   std::size_t channels = 0;
   double tau0_s = 0;
+  std::vector<TauSpec> taus;  // per statistic, once the length is known
   std::size_t group_begin = 0;
   int pass = 0;
   // "pass 2 of 4 (phase, channels 1-2 of 3)"; the first pass, before the channels are known,
@@ -130,6 +144,14 @@ OutOfCoreResult compute_allan_curves_out_of_core(
       tau0_s = 1.0 / result.rate_hz;
       result.samples = builders.front().samples();
       result.curves.assign(channels, {});
+      // A phase series has one point more than the rate or increment samples it integrates.
+      const std::int64_t phase_points = result.samples + (kind == DataKind::phase ? 0 : 1);
+      taus = taus_for(phase_points, tau0_s);
+      if (taus.size() != statistics.size()) {
+        throw std::logic_error("taus_for returned " + std::to_string(taus.size()) +
+                               " tau lists for " + std::to_string(statistics.size()) +
+                               " statistics");
+      }
     } else if (builders.front().samples() != result.samples) {
       throw Error(log.path + " changed while it was read (" + std::to_string(result.samples) +
                   " samples, then " + std::to_string(builders.front().samples()) + ")");
@@ -155,7 +177,7 @@ OutOfCoreResult compute_allan_curves_out_of_core(
         series.size() * statistics.size(), threads, [&](std::size_t i) {
           const std::size_t c = i / statistics.size();
           const std::size_t s = i % statistics.size();
-          AllanCurve curve = compute_allan_curve_bounded(series[c], statistics[s], taus,
+          AllanCurve curve = compute_allan_curve_bounded(series[c], statistics[s], taus[s],
                                                          confidence_level, settings.storage,
                                                          settings.edf_model);
           std::lock_guard lock(result_mutex);

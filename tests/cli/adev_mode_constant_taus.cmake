@@ -49,6 +49,16 @@ sigmatau_cli_test(NAME cli_adev_taus_per_statistic EXIT 0
   STDOUT "gx,totdev,,8\\.000000e\\+01,800,"
   STDERR "oadev skips tau 80 s: its longest on this log is 50 s \\(m = 500\\).*mdev skips tau 80 s"
   ARGS adev ${mct_white} --time-column t --stat totdev,oadev,mdev --taus 10,80 --format csv)
+# Out of core (the file over --memory) the length is known only after the first pass: the
+# same per-statistic taus, chosen then (before, 80 s aborted the run for oadev).
+sigmatau_cli_test(NAME cli_adev_taus_per_statistic_out_of_core EXIT 0
+  STDOUT "gx,totdev,,8\\.000000e\\+01,800,"
+  STDERR "computing exactly out of core.*oadev skips tau 80 s: its longest on this log is 50 s \\(m = 500\\).*mdev skips tau 80 s"
+  ARGS adev ${mct_white} --time-column t --stat totdev,oadev,mdev --taus 10,80 --format csv
+       --memory 1KB)
+sigmatau_cli_test(NAME cli_adev_taus_none_reaches_out_of_core EXIT 2
+  STDERR "tau 200 s is too long for"
+  ARGS adev ${mct_white} --time-column t --stat totdev,oadev --taus 10,200 --memory 1KB)
 # A tau no statistic reaches is still an error.
 sigmatau_cli_test(NAME cli_adev_taus_none_reaches EXIT 2
   STDERR "tau 200 s is too long for"

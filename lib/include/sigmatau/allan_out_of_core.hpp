@@ -76,4 +76,17 @@ OutOfCoreResult compute_allan_curves_out_of_core(
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
     const OutOfCoreSettings& settings = {});
 
+/// The taus of each statistic, chosen once the log's length is known (after the first pass):
+/// called with the number of phase points and the sample interval tau0_s [s], returns one
+/// TauSpec per statistic (e.g. an explicit list with the taus a statistic cannot reach left
+/// out, as adev does with several statistics).
+using TausForLength = std::function<std::vector<TauSpec>(std::int64_t n_phase_points, double tau0_s)>;
+
+/// As above, with each statistic's taus from taus_for.
+OutOfCoreResult compute_allan_curves_out_of_core(
+    const LogOptions& log, DataKind kind, double to_si,
+    const std::function<double(const TimingReport&)>& rate_hz,
+    const std::vector<Statistic>& statistics, const TausForLength& taus_for,
+    double confidence_level, const OutOfCoreSettings& settings = {});
+
 }  // namespace sigmatau
