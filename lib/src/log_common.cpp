@@ -129,15 +129,17 @@ std::string header_hint(const std::vector<std::string>& names) {
            "--binary i16|i32|f32|f64 and --channels C";
   }
   for (const std::string& n : names) {
-    if (n.find(';') != std::string::npos) {
-      return "; the header holds ';': fields are separated by commas, tabs or spaces, not ';' "
-             "(convert it: decimal commas to points first, then ';' to ',')";
-    }
+    if (n.find(';') != std::string::npos) return semicolon_hint("the header");
   }
   return "";
 }
 
 }  // namespace
+
+std::string semicolon_hint(const std::string& where) {
+  return "; " + where + " holds ';': fields are separated by commas, tabs or spaces, not ';' "
+         "(convert it: decimal commas to points first, then ';' to ',')";
+}
 
 ColumnSelection select_columns(const std::vector<std::string>& names, bool has_header,
                                const std::vector<bool>& numeric, const LogOptions& options,

@@ -39,6 +39,10 @@ std::optional<double> to_number(std::string_view field);
 /// `field` in double quotes for a message, cut to kMaxQuotedField characters ("..." appended).
 std::string quote_field(std::string_view field);
 
+/// The hint for text whose fields are separated by ';' (a European CSV, which the reader does
+/// not split), `where` naming it ("the header", "the line"): "; <where> holds ';': ...".
+std::string semicolon_hint(const std::string& where);
+
 /// The outcome of matching LogOptions::columns / time_column against a file's columns.
 struct ColumnSelection {
   std::vector<int> slots;            ///< per file column: channel index, kSkipColumn, kTimeColumn

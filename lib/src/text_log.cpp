@@ -140,6 +140,13 @@ TextLog::TextLog(ByteSource& source, const LogOptions& options, std::size_t bloc
   }
   std::vector<bool> numeric(fields_);
   for (std::size_t c = 0; c < fields_; ++c) numeric[c] = to_number(data[c]).has_value();
+  // "0;0.1" under a comma header (or none) is one field that is no number: say why ("no
+  // numeric columns" gives the hint for a ';' header itself).
+  if (std::none_of(numeric.begin(), numeric.end(), [](bool n) { return n; }) &&
+      header_text.find(';') == std::string::npos &&
+      std::find(first_row, first_row_end, ';') != first_row_end) {
+    fail(line_, 0, "the first data row holds no number" + semicolon_hint("it"));
+  }
   selection_ = select_columns(names, header, numeric, options, source_.name(),
                               header ? header_line : line_, line_, "column");
   row_.assign(selection_.channel_columns.size(), 0.0);
@@ -197,8 +204,10 @@ bool TextLog::next_content_line(const char*& b, const char*& e) {
 void TextLog::fail_ragged(const char* b, const char* e) const {
   const std::size_t found = count_fields(b, e, delimiter_);
   const std::size_t column = found < fields_ ? found + 1 : fields_ + 1;
+  const bool semicolons = std::find(b, e, ';') != e;
   fail(line_, static_cast<std::int64_t>(column),
-       "expected " + std::to_string(fields_) + " fields, found " + std::to_string(found));
+       "expected " + std::to_string(fields_) + " fields, found " + std::to_string(found) +
+           (semicolons ? semicolon_hint("the line") : ""));
 }
 
 double TextLog::number_or_fail(const char* b, const char* e, std::size_t field) const {
@@ -207,7 +216,9 @@ double TextLog::number_or_fail(const char* b, const char* e, std::size_t field) 
   const std::string_view shown = trim_field(text);
   fail(line_, static_cast<std::int64_t>(field + 1),
        shown.empty() ? std::string("expected a number, found an empty field")
-                     : "expected a number, found " + quote_field(shown));
+                     : "expected a number, found " + quote_field(shown) +
+                           (shown.find(';') != std::string_view::npos ? semicolon_hint("the field")
+                                                                       : ""));
 }
 
 void TextLog::time_or_fail(const char* b, const char* e, std::size_t field) {

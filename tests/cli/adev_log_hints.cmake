@@ -38,6 +38,20 @@ sigmatau_cli_test(NAME cli_log_semicolon_time_column EXIT 2
 sigmatau_cli_test(NAME cli_log_semicolon_no_numeric EXIT 2
   STDERR "no numeric columns.*the header holds ';'"
   ARGS adev ${lh_dir}/semicolon.csv --rate 100)
+# ';' in the data rows only: under a comma header, in a field that is no number, and in a
+# line with more fields than the header.
+file(WRITE ${lh_dir}/semicolon_rows.csv "t,gx\n0.00;1.23\n0.01;1.25\n")
+sigmatau_cli_test(NAME cli_log_semicolon_rows EXIT 2
+  STDERR "semicolon_rows.csv:2: the first data row holds no number; it holds ';'"
+  ARGS adev ${lh_dir}/semicolon_rows.csv --rate 100)
+file(WRITE ${lh_dir}/semicolon_field.csv "gx\n1.23\n1;25\n")
+sigmatau_cli_test(NAME cli_log_semicolon_field EXIT 2
+  STDERR "semicolon_field.csv:3:1: expected a number, found \"1;25\"; the field holds ';'"
+  ARGS adev ${lh_dir}/semicolon_field.csv --rate 100)
+file(WRITE ${lh_dir}/semicolon_ragged.csv "0;0,1;0,2\n0,01;0,3;0,1\n")
+sigmatau_cli_test(NAME cli_log_semicolon_ragged EXIT 2
+  STDERR "semicolon_ragged.csv:2:4: expected 3 fields, found 4; the line holds ';'"
+  ARGS adev ${lh_dir}/semicolon_ragged.csv --rate 100)
 
 # Bytes 1, 2, 3 in the first line (no NUL, which the text reader names itself).
 string(ASCII 1 2 3 lh_control)
