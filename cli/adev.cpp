@@ -558,7 +558,7 @@ void add_adev_command(CLI::App& app) {
                       "statistics, comma-separated: oadev,adev,mdev,tdev,hdev,ohdev,totdev")
       ->capture_default_str();
   command->add_option("--taus", args->taus,
-                      "averaging times: octave | decade | many[:P] | all | list of seconds")
+                      "averaging times: octave | decade | many[:P] | all | times (0.1,1,10 in s, or 100ms,2min)")
       ->capture_default_str();
   command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
       ->capture_default_str();

@@ -377,9 +377,17 @@ TEST_CASE("tau specifications parse, and anything else is an Error naming the te
   const auto explicit_spec = parse_tau_spec("0.01, 0.1,1,2e1");
   CHECK(explicit_spec.kind == TauSpec::Kind::explicit_seconds);
   CHECK(explicit_spec.seconds == std::vector<double>{0.01, 0.1, 1.0, 20.0});
+  // Times with a unit, as --duration takes them: one multiplication by the unit's factor, so
+  // within an ulp or two of the seconds.
+  const auto with_units = parse_tau_spec("10ms, 1 s,2min,1h,0.5");
+  const std::vector<double> expected{0.01, 1.0, 120.0, 3600.0, 0.5};
+  REQUIRE(with_units.seconds.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    CHECK(std::abs(with_units.seconds[i] / expected[i] - 1) < 4e-16);
+  }
   for (const char* bad : {"", "octaves", "many:", "many:0", "many:-3", "many:2.5", "many:x",
-                          "many:100000", "0.1,,1", "1,", "-1", "0", "nan", "inf", "1s",
-                          "0.1;1", "fast"}) {
+                          "many:100000", "0.1,,1", "1,", "-1", "0", "nan", "inf", "1m",
+                          "1deg", "-1s", "0 s", "1 s/s", "0.1;1", "fast"}) {
     INFO("spec \"" << bad << "\"");
     CHECK_THROWS_WITH_AS(parse_tau_spec(bad),
                          doctest::Contains(("\"" + std::string(bad) + "\"").c_str()), Error);

@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/units.hpp"
 
 namespace sigmatau {
 namespace {
@@ -34,7 +35,8 @@ std::string_view trim(std::string_view s) {
 
 [[noreturn]] void bad_spec(std::string_view text, const std::string& why) {
   throw Error("bad tau specification \"" + std::string(text) + "\": " + why +
-              " (expected octave, decade, many, many:P, all, or seconds such as 0.01,0.1,1)");
+              " (expected octave, decade, many, many:P, all, or times such as 0.01,0.1,1 (seconds) or "
+              "10ms,1s,2min)");
 }
 
 std::int64_t stop_ratio(Statistic statistic) {
@@ -82,7 +84,13 @@ TauSpec parse_tau_spec(std::string_view text) {
       double value = 0.0;
       const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
       if (item.empty() || ec != std::errc() || end != item.data() + item.size()) {
-        bad_spec(text, "\"" + std::string(item) + "\" is not a number of seconds");
+        // A time with its unit ("100 ms", "2min", "1h"), as --duration takes it.
+        try {
+          value = parse_quantity_as(item, dim::time, "tau");
+        } catch (const UnitError&) {
+          bad_spec(text, "\"" + std::string(item) + "\" is not a time (seconds, or a number with "
+                         "a unit such as 100ms or 2min)");
+        }
       }
       if (!(value > 0.0 && std::isfinite(value))) {
         bad_spec(text, "tau must be a finite number > 0 s, got \"" + std::string(item) + "\"");

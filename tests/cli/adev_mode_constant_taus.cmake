@@ -59,6 +59,13 @@ sigmatau_cli_test(NAME cli_adev_taus_per_statistic_out_of_core EXIT 0
 sigmatau_cli_test(NAME cli_adev_taus_none_reaches_out_of_core EXIT 2
   STDERR "tau 200 s is too long for"
   ARGS adev ${mct_white} --time-column t --stat totdev,oadev --taus 10,200 --memory 1KB)
+# Times with a unit, as --duration takes them: 100 ms is m = 1, half a minute m = 300.
+sigmatau_cli_test(NAME cli_adev_taus_with_units EXIT 0
+  STDOUT "gx,oadev,,1\\.000000e-01,1,[^\n]*\ngx,oadev,,3\\.000000e\\+01,300,"
+  ARGS adev ${mct_white} --time-column t --taus "100ms, 0.5min" --format csv)
+sigmatau_cli_test(NAME cli_adev_taus_with_wrong_unit EXIT 2
+  STDERR "bad tau specification \"1m\": \"1m\" is not a time"
+  ARGS adev ${mct_white} --time-column t --taus 1m)
 # A tau no statistic reaches is still an error.
 sigmatau_cli_test(NAME cli_adev_taus_none_reaches EXIT 2
   STDERR "tau 200 s is too long for"

@@ -18,7 +18,8 @@ struct TauSpec {
   std::vector<double> seconds;       ///< for `explicit_seconds` [s]
 };
 
-/// Parses "octave" | "decade" | "many" | "many:P" | "all" | "0.01,0.1,1" (seconds).
+/// Parses "octave" | "decade" | "many" | "many:P" | "all" | a list of times: bare numbers are
+/// seconds ("0.01,0.1,1"), or each with a unit ("10ms,1s,2min"; parse_quantity).
 /// Throws Error naming the text on anything else.
 TauSpec parse_tau_spec(std::string_view text);
 
