@@ -1,6 +1,7 @@
 // The chain `analyze` and `demo` share: its options and running it into the output directory.
 #include "analysis_chain.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "log_options.hpp"
+#include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
@@ -61,7 +63,64 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   return options;
 }
 
+/// The measured quantities the chain checks against a sheet (analysis_results.cpp: the joint
+/// fit's N, B and K of every sensor channel).
+constexpr MeasuredQuantity kChainQuantities[] = {MeasuredQuantity::white_noise,
+                                                 MeasuredQuantity::bias_instability,
+                                                 MeasuredQuantity::rate_random_walk};
+
+/// Whether `sheet` gives a limit for any quantity the chain measures of `sensor`: whether a
+/// detected term would get a verdict other than "not specified" (which depends on the sheet's
+/// fields, not on the value; 1 is any positive value).
+bool sheet_limits(const DataSheet& sheet, Sensor sensor, DensityConvention convention) {
+  std::vector<MeasuredParameter> probe;
+  for (const MeasuredQuantity q : kChainQuantities) probe.push_back({sensor, q, "x", 1, 1, 1});
+  ComplianceOptions options;
+  options.convention = convention;
+  return items_checked(check_compliance(probe, sheet, options)) > 0;
+}
+
+/// "nothing to check: NAME (PART) prints no limit for ... of INPUT: the log has ...; the
+/// sheet's noise limits are for ...", and what to do; `why` is said after the log's channels.
+std::string nothing_to_check(const DataSheet& sheet, DensityConvention convention,
+                             const std::string& input, const std::vector<SheetChannel>& channels,
+                             const std::string& why) {
+  std::string has;
+  for (const Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+    std::string names;
+    for (const auto& c : channels) {
+      if (c.sensor == sensor) names += (names.empty() ? "" : ", ") + c.name;
+    }
+    if (names.empty()) continue;
+    has += std::string(has.empty() ? "" : " and ") +
+           (sensor == Sensor::gyro ? "gyro channels " : "accelerometer channels ") + names;
+  }
+  if (has.empty()) has = "no gyro or accelerometer channel (by name, or --gyro / --accel)";
+  std::string limits;
+  for (const Sensor sensor : {Sensor::gyro, Sensor::accel}) {
+    if (!sheet_limits(sheet, sensor, convention)) continue;
+    limits += std::string(limits.empty() ? "" : " and ") +
+              (sensor == Sensor::gyro ? "the gyro" : "the accelerometer");
+  }
+  if (limits.empty()) limits = "no sensor";
+  return "nothing to check: " + sheet.name + " (" + sheet.part + ") prints no limit on the noise "
+         "terms measured in " + input + ": the log has " + has + why + "; the sheet's white "
+         "noise, bias instability and rate random walk limits are for " + limits +
+         " (use the sheet of this part, or a log of the sensors it specifies; nothing written)";
+}
+
 }  // namespace
+
+void check_sheet_applies(const ChainArguments& args, const std::string& input,
+                         const std::vector<SheetChannel>& channels) {
+  if (args.spec.empty()) return;
+  const DataSheet sheet = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
+  const DensityConvention convention = parse_density_convention(args.convention);
+  for (const auto& c : channels) {
+    if (c.sensor && sheet_limits(sheet, *c.sensor, convention)) return;
+  }
+  throw Error(nothing_to_check(sheet, convention, input, channels, ""));
+}
 
 void add_chain_options(CLI::App& command, ChainArguments& args) {
   command.add_option("--stat", args.statistics,
@@ -118,6 +177,35 @@ void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze
   options.flicker_taps = flicker_taps;
   const auto start = std::chrono::steady_clock::now();
   AnalysisOutput analysis = analyze(options);
+  if (options.spec) {
+    // A sheet that checked nothing gives no verdict: not a pass (as `check`), and no output.
+    const nlohmann::json results = nlohmann::json::parse(analysis.results_json);
+    const auto& items = results["compliance"]["items"];
+    const bool checked = std::any_of(items.begin(), items.end(), [](const nlohmann::json& item) {
+      return item.value("verdict", "") != std::string(to_string(Verdict::not_specified));
+    });
+    if (!checked) {
+      std::vector<SheetChannel> channels;
+      bool covered = false;
+      for (const auto& c : results["channels"]) {
+        SheetChannel channel{c.value("name", ""), std::nullopt};
+        if (c.contains("sensor")) {
+          channel.sensor = c["sensor"] == "gyro" ? Sensor::gyro : Sensor::accel;
+          covered = covered || sheet_limits(*options.spec, *channel.sensor, options.convention);
+        }
+        channels.push_back(channel);
+      }
+      if (covered) {
+        for (const auto& w : analysis.warnings) std::cerr << "sigmatau: warning: " << w << "\n";
+      }
+      const std::string input = results["input"].value("path", std::string("-"));
+      throw Error(nothing_to_check(*options.spec, options.convention,
+                                   input == "-" ? std::string("stdin") : input, channels,
+                                   covered ? ", but no noise term of theirs was fitted (the "
+                                             "warnings say why)"
+                                           : ""));
+    }
+  }
   if (!notes.empty()) {
     // results.json is the record the report is drawn from: the notes go into its warnings.
     nlohmann::json results = nlohmann::json::parse(analysis.results_json);

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "analysis_chain.hpp"
+#include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
@@ -21,8 +22,6 @@ struct AnalyzeArguments {
   ChainArguments chain;
   std::string gyro;
   std::string accel;
-  std::string gyro_unit;
-  std::string accel_unit;
   std::string memory = "4GiB";
 };
 
@@ -34,10 +33,11 @@ struct AnalyzeArguments {
 constexpr std::int64_t kAnalyzeBytesPerValue = 40;
 
 /// The channels analyze works on, chosen from the log's channel names: explicit --gyro / --accel
-/// columns (only those), else every column with its role recognised by name; each with the
-/// factor of its sensor's unit (--gyro-unit / --accel-unit, else --unit).
+/// columns (only those), else every column with its role recognised by name; each with its unit
+/// (channel_units_of: --unit, --gyro-unit / --accel-unit by the sensor, a ROS bag's own) and the
+/// factor that takes its values, read as they are, to SI. `notes` as channel_units_of.
 std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& names,
-                                            const AnalyzeArguments& args, DataKind kind) {
+                                            const AnalyzeArguments& args, bool notes) {
   std::map<std::string, ChannelRole> forced;
   auto force_roles = [&](const std::string& list, Sensor sensor, const char* option) {
     if (list.empty()) return;
@@ -57,57 +57,58 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
   };
   force_roles(args.gyro, Sensor::gyro, "--gyro");
   force_roles(args.accel, Sensor::accel, "--accel");
-  const std::string gyro_unit = !args.gyro_unit.empty() ? args.gyro_unit : args.log.unit;
-  const std::string accel_unit = !args.accel_unit.empty() ? args.accel_unit : args.log.unit;
-  // A sensor unit is checked even when no column of that sensor is found: a wrong --accel-unit
-  // on a gyro-only log used to pass unnoticed.
-  const auto expected_dimension = [&](bool gyro) { return sensor_unit_dimension(gyro, kind); };
-  if (!args.gyro_unit.empty()) parse_unit_as(args.gyro_unit, expected_dimension(true), "--gyro-unit");
-  if (!args.accel_unit.empty()) {
-    parse_unit_as(args.accel_unit, expected_dimension(false), "--accel-unit");
-  }
-  // --unit of one sensor's dimension beside that sensor's own option: one of the two was
-  // silently ignored (--unit deg/s --gyro-unit rad/s read the gyros as rad/s).
-  std::optional<Unit> common;
-  try {
-    if (!args.log.unit.empty()) common = parse_unit(args.log.unit);
-  } catch (const UnitError&) {
-    // a bad --unit is reported, named, where the columns take it
-  }
-  if (common) {
-    for (const bool gyro : {true, false}) {
-      const std::string& own = gyro ? args.gyro_unit : args.accel_unit;
-      if (own.empty() || common->dimension != expected_dimension(gyro)) continue;
-      if (parse_unit(own).factor == common->factor) continue;
-      throw Error("--unit " + args.log.unit + " and " + (gyro ? "--gyro-unit " : "--accel-unit ") + own +
-                  " both name the unit of the " + (gyro ? "gyro" : "accelerometer") +
-                  " columns and disagree: give one of them");
-    }
-  }
   std::vector<BoundedChannel> chosen;
+  std::vector<std::string> chosen_names;
+  std::vector<ChannelSensor> sensors;
   for (std::size_t c = 0; c < names.size(); ++c) {
     BoundedChannel channel;
     channel.column = c;
     channel.name = names[c];
-    if (forced.count(channel.name)) {
-      channel.role = forced[channel.name];
-    } else if (forced.empty()) {
+    ChannelSensor sensor;
+    if (const auto it = forced.find(channel.name); it != forced.end()) {
+      channel.role = it->second;
+      sensor = {it->second, it->second.sensor == Sensor::gyro ? "by --gyro" : "by --accel"};
+    } else if (!forced.empty()) {
+      continue;  // only the named columns
+    } else {
       channel.role = classify_channel(channel.name);
+      sensor = {channel.role};
     }
-    if (!forced.empty() && !forced.count(channel.name)) continue;  // only the named columns
-    if (channel.role) channel.input_unit = channel.role->sensor == Sensor::gyro ? gyro_unit : accel_unit;
-    if (!channel.input_unit.empty()) {
-      const bool gyro = channel.role->sensor == Sensor::gyro;
-      // The option the unit came from: --gyro-unit / --accel-unit, or --unit for both.
-      const bool own = !(gyro ? args.gyro_unit : args.accel_unit).empty();
-      const std::string field = own ? (gyro ? "--gyro-unit" : "--accel-unit")
-                                    : "--unit (applied to the " + std::string(gyro ? "gyro" : "accelerometer") +
-                                          " column " + channel.name + "; give --gyro-unit and --accel-unit apart)";
-      channel.to_si = parse_unit_as(channel.input_unit, expected_dimension(gyro), field).factor;
-    }
+    chosen_names.push_back(channel.name);
+    sensors.push_back(std::move(sensor));
     chosen.push_back(std::move(channel));
   }
+  const std::vector<ChannelUnit> units = channel_units_of(args.log, chosen_names, sensors, notes);
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    chosen[i].input_unit = units[i].unit;
+    chosen[i].to_si = units[i].to_si;  // the values are read as they are (log_as_read)
+  }
   return chosen;
+}
+
+/// The log arguments the values are read with: without any unit (choose_channels gives each
+/// channel its factor to SI, so the values are read as they are).
+LogArguments log_as_read(const LogArguments& args) {
+  LogArguments as_read = args;
+  as_read.unit.clear();
+  as_read.gyro_unit.clear();
+  as_read.accel_unit.clear();
+  return as_read;
+}
+
+/// What is checked before a long read, from the header's names (or a bag's channels): the units
+/// (as adev and psd do: --unit against --kind, and the channels' units when a unit option is
+/// given), and that the --spec sheet has a limit for a sensor of the log (check_sheet_applies).
+void check_before_reading(const AnalyzeArguments& args) {
+  LoadedChannels unit_only;
+  set_input_unit(args.log, unit_only);
+  const auto names = early_channel_names(args.log, !args.chain.spec.empty());
+  if (!names) return;
+  std::vector<SheetChannel> channels;
+  for (const BoundedChannel& c : choose_channels(*names, args, false)) {
+    channels.push_back({c.name, c.role ? std::optional<Sensor>(c.role->sensor) : std::nullopt});
+  }
+  check_sheet_applies(args.chain, args.log.input, channels);
 }
 
 /// The provenance fields of the input file (size and CRC-32; none for stdin).
@@ -139,17 +140,14 @@ void run_analyze_bounded(const AnalyzeArguments& args) {
             << " in memory; analysing it in bounded memory (its values and phase in temporary "
                "files in "
             << (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") << ")\n";
-  LogArguments log_args = args.log;
-  log_args.unit.clear();  // per-sensor units are applied by choose_channels
+  const LogArguments log_args = log_as_read(args.log);
   const LogOptions options = log_options_from(log_args);
-  LoadedChannels kind_only;
-  set_input_unit(log_args, kind_only);
-  const DataKind kind = kind_only.kind;
+  const DataKind kind = parse_data_kind(log_args.kind);
   check_output(args.chain);
   Progress progress;
   BoundedAnalysisSource source;
   source.log = options;
-  source.channels = [&](const std::vector<std::string>& names) { return choose_channels(names, args, kind); };
+  source.channels = [&](const std::vector<std::string>& names) { return choose_channels(names, args, true); };
   source.rate_hz = [&](const TimingReport& timing) {
     return resolve_rate_hz(args.log.rate_hz, timing, args.log.input);
   };
@@ -167,17 +165,16 @@ void run_analyze_bounded(const AnalyzeArguments& args) {
 void run_analyze(const AnalyzeArguments& args) {
   // Before reading: the in-memory path used to read the whole log before this check.
   check_output(args.chain);
+  check_before_reading(args);
   if (needs_bounded(args)) {
     run_analyze_bounded(args);
     return;
   }
-  LogArguments log_args = args.log;
-  log_args.unit.clear();  // per-sensor units are applied below
-  LoadedChannels loaded = load_channels(log_args);
+  LoadedChannels loaded = load_channels(log_as_read(args.log));
   AnalysisInput input = input_provenance(loaded.log.path, loaded.kind);
   input.rate_hz = loaded.rate_hz;
   if (loaded.log.timing.has_time) input.timing = loaded.log.timing;
-  for (const BoundedChannel& chosen : choose_channels(loaded.log.channel_names, args, loaded.kind)) {
+  for (const BoundedChannel& chosen : choose_channels(loaded.log.channel_names, args, true)) {
     AnalysisChannel channel;
     channel.name = chosen.name;
     channel.role = chosen.role;
@@ -202,8 +199,7 @@ void add_analyze_command(CLI::App& app) {
   add_log_options(*command, args->log);
   command->add_option("--gyro", args->gyro, "gyro columns x,y,z (default: recognised by name)");
   command->add_option("--accel", args->accel, "accelerometer columns x,y,z (default: by name)");
-  command->add_option("--gyro-unit", args->gyro_unit, "unit of the gyro columns (default rad/s)");
-  command->add_option("--accel-unit", args->accel_unit, "unit of the accelerometer columns (default m/s^2)");
+  add_sensor_unit_options(*command, args->log);
   command->add_option("--memory", args->memory,
                       "memory for the analysis, e.g. 1GiB: a larger file is analysed in bounded "
                       "memory, with its values and phase in temporary files (TMPDIR) and the same "

@@ -10,11 +10,11 @@ namespace sigmatau::cli {
 
 void add_sensor_unit_options(CLI::App& command, LogArguments& args) {
   command.add_option("--gyro-unit", args.gyro_unit,
-                     "unit of the gyro columns (named gx / gyro_x / wx ...) of a log with both "
-                     "sensors, instead of --unit, e.g. deg/s");
+                     "unit of the gyro columns (named gx / gyro_x / wx ...), instead of --unit "
+                     "(which names one unit for every column), e.g. deg/s");
   command.add_option("--accel-unit", args.accel_unit,
-                     "unit of the accelerometer columns (named ax / accel_x ...) of a log with "
-                     "both sensors, instead of --unit, e.g. g");
+                     "unit of the accelerometer columns (named ax / accel_x ...), instead of "
+                     "--unit, e.g. g");
 }
 
 bool per_channel_units(const LogArguments& args) {
@@ -23,9 +23,9 @@ bool per_channel_units(const LogArguments& args) {
 
 namespace {
 
-/// The sensor a unit of data `kind` names (nullopt: neither an angular rate nor an
-/// acceleration, e.g. s for a clock).
-std::optional<Sensor> sensor_of_unit(const Dimension& d, DataKind kind) {
+/// The sensor a unit of dimension `d` names for data of `kind` (nullopt: neither an angular
+/// rate nor an acceleration, e.g. s for a clock).
+std::optional<Sensor> sensor_of_dimension(const Dimension& d, DataKind kind) {
   if (d == sensor_unit_dimension(true, kind)) return Sensor::gyro;
   if (d == sensor_unit_dimension(false, kind)) return Sensor::accel;
   return std::nullopt;
@@ -44,27 +44,54 @@ ChannelUnit bag_unit(Sensor s) {
 
 }  // namespace
 
-std::optional<LoadedChannels> early_channel_units(const LogArguments& args) {
-  const bool bag = is_bag_path(args.input);
+std::optional<Sensor> sensor_of_unit(const ChannelUnit& unit, DataKind kind) {
+  if (unit.unit.empty()) return std::nullopt;
+  return sensor_of_dimension(unit.dimension, kind);
+}
+
+std::vector<ChannelSensor> sensors_by_name(const std::vector<std::string>& names) {
+  std::vector<ChannelSensor> sensors;
+  sensors.reserve(names.size());
+  for (const auto& name : names) sensors.push_back({classify_channel(name)});
+  return sensors;
+}
+
+namespace {
+/// Whether early_channel_names reads the names (see there).
+bool names_known_early(const LogArguments& args, bool always) {
   const bool any_unit = !args.unit.empty() || !args.gyro_unit.empty() || !args.accel_unit.empty();
-  if (args.input == "-" || (!bag && !any_unit)) return std::nullopt;
-  LoadedChannels loaded;
-  set_input_unit(args, loaded);
+  return args.input != "-" && (is_bag_path(args.input) || any_unit || always);
+}
+}  // namespace
+
+std::optional<std::vector<std::string>> early_channel_names(const LogArguments& args, bool always) {
+  if (!names_known_early(args, always)) return std::nullopt;
   const LogOptions options = log_options_from(args);
-  if (bag) {
-    loaded.log.channel_names = options.columns.empty()
-                                   ? std::vector<std::string>{"gx", "gy", "gz", "ax", "ay", "az"}
+  if (is_bag_path(args.input)) {
+    return options.columns.empty() ? std::vector<std::string>{"gx", "gy", "gz", "ax", "ay", "az"}
                                    : options.columns;
-  } else {
-    loaded.log.channel_names = LogReader(options).channel_names();
   }
+  return LogReader(options).channel_names();
+}
+
+std::optional<LoadedChannels> early_channel_units(const LogArguments& args) {
+  if (!names_known_early(args, false)) return std::nullopt;
+  LoadedChannels loaded;
+  set_input_unit(args, loaded);  // a bad --unit is named before the file is opened
+  loaded.log.channel_names = *early_channel_names(args);
   resolve_channel_units(args, loaded, false);
   return loaded;
 }
 
 void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, bool notes) {
-  const auto& names = loaded.log.channel_names;
-  loaded.channel_units.assign(names.size(), ChannelUnit{});
+  loaded.channel_units =
+      channel_units_of(args, loaded.log.channel_names, sensors_by_name(loaded.log.channel_names), notes);
+}
+
+std::vector<ChannelUnit> channel_units_of(const LogArguments& args,
+                                          const std::vector<std::string>& names,
+                                          const std::vector<ChannelSensor>& sensors, bool notes) {
+  std::vector<ChannelUnit> units(names.size());
   const bool bag = is_bag_path(args.input);
   const bool per_sensor = !args.gyro_unit.empty() || !args.accel_unit.empty();
   const DataKind kind = parse_data_kind(args.kind);
@@ -91,13 +118,14 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, boo
   }
   std::string left_out;  // columns of the sensor whose --gyro-unit / --accel-unit is missing
   for (std::size_t c = 0; c < names.size(); ++c) {
-    const auto role = classify_channel(names[c]);
-    ChannelUnit& unit = loaded.channel_units[c];
+    ChannelUnit& unit = units[c];
     if (bag) {
-      if (!role) continue;  // not an Imu axis (cannot happen with the bag reader's names)
-      unit = bag_unit(role->sensor);
+      // The message field the channel was read from fixes its unit.
+      const auto field = classify_channel(names[c]);
+      if (!field) continue;  // not an Imu axis (cannot happen with the bag reader's names)
+      unit = bag_unit(field->sensor);
       const std::optional<ChannelUnit>& other =
-          given_all ? given_all : (role->sensor == Sensor::gyro ? given_gyro : given_accel);
+          given_all ? given_all : (field->sensor == Sensor::gyro ? given_gyro : given_accel);
       if (other && !(other->dimension == unit.dimension && other->to_si == 1.0)) {
         throw Error(args.input + ": channel " + names[c] + " is " + unit.unit +
                     " (a ROS bag's sensor_msgs/Imu, whose units REP 103 fixes), but " +
@@ -106,15 +134,16 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, boo
       }
       continue;
     }
+    const std::optional<ChannelRole>& role = sensors[c].role;
     if (given_all) {
       unit = *given_all;
-      const auto unit_sensor = sensor_of_unit(unit.dimension, kind);
+      const auto unit_sensor = sensor_of_dimension(unit.dimension, kind);
       if (role && unit_sensor && *unit_sensor != role->sensor) {
         throw Error("--unit " + args.unit + " is " +
                     (*unit_sensor == Sensor::gyro ? "an angular rate" : "an acceleration") +
                     " (" + sensor_words(*unit_sensor) + "'s unit), but column " + names[c] +
-                    " is " + sensor_words(role->sensor) +
-                    " axis by its name; give each sensor its unit with --gyro-unit and "
+                    " is " + sensor_words(role->sensor) + " axis " + sensors[c].by +
+                    "; give each sensor its unit with --gyro-unit and "
                     "--accel-unit (e.g. --gyro-unit deg/s --accel-unit g), or choose the columns "
                     "of one sensor with --columns");
       }
@@ -137,6 +166,7 @@ void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, boo
     std::fprintf(stderr, "sigmatau: note: %s: no %s: %s left in the input unit\n", args.input.c_str(),
                  args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit", left_out.c_str());
   }
+  return units;
 }
 
 RateUnit rate_unit(const ChannelUnit& unit, DataKind kind) {

@@ -1,17 +1,40 @@
 #pragma once
-// The unit of every channel of a log for adev and psd: one --unit, --gyro-unit / --accel-unit
-// by the columns' names (classify_channel), or the units a ROS bag's sensor_msgs/Imu fixes;
-// and the printed unit of each channel's results (--out-unit, one per sensor).
+// The unit of every channel of a log, for every verb that reads one (adev, psd, fit, analyze):
+// one --unit, --gyro-unit / --accel-unit by the columns' sensors (their names, classify_channel,
+// or analyze's --gyro / --accel), or the units a ROS bag's sensor_msgs/Imu fixes; and the
+// printed unit of each channel's results (--out-unit, one per sensor).
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "log_options.hpp"
+#include "sigmatau/analysis.hpp"
 
 namespace sigmatau::cli {
 
 /// Adds --gyro-unit and --accel-unit (into args.gyro_unit / accel_unit) to `command`.
 void add_sensor_unit_options(CLI::App& command, LogArguments& args);
+
+/// A channel's sensor as a verb knows it, and how (for messages).
+struct ChannelSensor {
+  std::optional<ChannelRole> role;  ///< nullopt: neither a gyro nor an accelerometer axis
+  std::string by = "by its name";   ///< how the role is known: "by its name", "by --gyro", ...
+};
+
+/// The sensors of `names` by name (classify_channel).
+std::vector<ChannelSensor> sensors_by_name(const std::vector<std::string>& names);
+
+/// The unit of each channel `names[c]` whose sensor is `sensors[c]`, by the rules and with the
+/// errors of resolve_channel_units (which calls it with sensors_by_name). A ROS bag's channel
+/// takes its unit from its name (the message field it was read from), whatever `sensors` says.
+std::vector<ChannelUnit> channel_units_of(const LogArguments& args,
+                                          const std::vector<std::string>& names,
+                                          const std::vector<ChannelSensor>& sensors,
+                                          bool notes = true);
+
+/// The sensor a channel's unit names for data of `kind` (deg/s: gyro, g: accelerometer; for
+/// increments and phase deg and m/s); nullopt when the unit is unknown or neither (s, a clock).
+std::optional<Sensor> sensor_of_unit(const ChannelUnit& unit, DataKind kind);
 
 /// Fills loaded.channel_units from the channel names (loaded.log.channel_names), the options
 /// and, for a ROS bag, the units sensor_msgs/Imu fixes (gx gy gz rad/s, ax ay az m/s^2, REP
@@ -24,6 +47,13 @@ void add_sensor_unit_options(CLI::App& command, LogArguments& args);
 /// Call once the names are known, on every path (in memory, stream, out of core).
 /// `notes`: print the note about a sensor left without a unit (off for early_channel_units).
 void resolve_channel_units(const LogArguments& args, LoadedChannels& loaded, bool notes = true);
+
+/// The channel names known before the log is read: from the header (a LogReader opened and
+/// dropped), or for a ROS bag --columns or the six Imu channels. nullopt for stdin (it cannot be
+/// read twice) and, unless `always`, when no unit option is given to a text or binary log
+/// (nothing to check). Throws as the reader does.
+std::optional<std::vector<std::string>> early_channel_names(const LogArguments& args,
+                                                            bool always = false);
 
 /// The channel units known before the log is read (so a contradiction is an error at once, not
 /// after a long read): the channel names from the header (a LogReader opened and dropped), or

@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
@@ -26,9 +27,6 @@ namespace {
 
 struct FitArguments {
   LogArguments log;
-  /// Units of the gyro and accelerometer columns of a log with both (instead of one --unit).
-  std::string gyro_unit;
-  std::string accel_unit;
   std::string method = "joint";
   std::string terms;
   double ci = 0.95;
@@ -93,6 +91,7 @@ std::optional<Sensor> sensor_from_name(const std::string& name) {
 
 Sensor sensor_of(const std::string& name, std::optional<Sensor> from_unit) {
   if (from_unit) return *from_unit;
+  if (const auto role = classify_channel(name)) return role->sensor;
   if (auto s = sensor_from_name(name)) return *s;
   throw Error("cannot tell whether channel \"" + name +
               "\" is a gyro or an accelerometer: give --unit (e.g. deg/s or m/s^2) or name it "
@@ -256,56 +255,16 @@ std::string sniff(const std::string& path) {
   return head;
 }
 
-/// The sensor that --unit names (its dimension, per second for increments and phase), or
-/// nullopt without --unit. Throws Error when the unit is neither a rate nor an acceleration.
-std::optional<Sensor> sensor_from_unit(const LoadedChannels& unit) {
-  if (unit.unit.empty()) return std::nullopt;
-  Dimension d = unit.dimension;
-  if (unit.kind != DataKind::rate) d.time2 -= 2;
-  if (d == dim::angular_rate) return Sensor::gyro;
-  if (d == dim::acceleration) return Sensor::accel;
+/// Refuses, before the log is read, a --unit that names neither sensor (fit needs to know
+/// which terms a channel has: rate random walk or acceleration random walk, ...).
+void check_unit_names_a_sensor(const LogArguments& args) {
+  LoadedChannels unit;
+  set_input_unit(args, unit);
+  if (unit.unit.empty()) return;
+  const ChannelUnit given{unit.unit, unit.dimension, unit.to_si, 1.0, "--unit"};
+  if (sensor_of_unit(given, unit.kind)) return;
   throw Error("--unit " + unit.unit + " (--kind " + std::string(to_string(unit.kind)) +
               ") is neither an angular rate nor an acceleration");
-}
-
-/// --gyro-unit / --accel-unit: each sensor's factor to SI (1 when its option is left out), for a
-/// log whose gyro and accelerometer columns are in different units. The channels' sensors then
-/// come from their names (classify_channel), and the curves computed in the input units are
-/// scaled by their sensor's factor (a deviation and its interval scale with the unit; the
-/// noise identification and the EDF do not depend on it).
-struct SensorUnits {
-  double gyro_to_si = 1;
-  double accel_to_si = 1;
-};
-
-std::optional<SensorUnits> sensor_units(const FitArguments& args) {
-  if (args.gyro_unit.empty() && args.accel_unit.empty()) return std::nullopt;
-  if (!args.log.unit.empty()) {
-    throw Error("--unit " + args.log.unit + " names one unit for every column; with --gyro-unit / "
-                "--accel-unit leave it out");
-  }
-  const DataKind kind = parse_data_kind(args.log.kind);
-  auto factor = [&](const std::string& text, bool gyro, const char* option) {
-    return text.empty() ? 1.0 : parse_unit_as(text, sensor_unit_dimension(gyro, kind), option).factor;
-  };
-  SensorUnits units;
-  units.gyro_to_si = factor(args.gyro_unit, true, "--gyro-unit");
-  units.accel_to_si = factor(args.accel_unit, false, "--accel-unit");
-  if (args.gyro_unit.empty() || args.accel_unit.empty()) {
-    std::cerr << "sigmatau: no " << (args.gyro_unit.empty() ? "--gyro-unit" : "--accel-unit")
-              << ": the " << (args.gyro_unit.empty() ? "gyro" : "accelerometer")
-              << " columns, if any, are taken as SI\n";
-  }
-  return units;
-}
-
-/// The sensor of a column by its name, for --gyro-unit / --accel-unit; Error naming the column
-/// when the name says neither.
-Sensor sensor_by_name(const std::string& name, const std::string& input) {
-  if (const auto role = classify_channel(name)) return role->sensor;
-  throw Error(input + ": column \"" + name + "\" is neither a gyro nor an accelerometer by its "
-              "name (gx / gyro_x / wx, ax / accel_x), so --gyro-unit / --accel-unit cannot say its "
-              "unit; choose the sensor columns with --columns");
 }
 
 void warn_constant(const std::string& input, const std::string& channel) {
@@ -326,6 +285,10 @@ void scale_curve(AllanCurve& curve, double factor) {
 /// needs to know of the series behind it.
 struct LogCurves {
   std::vector<std::string> channel_names;
+  /// Each channel's unit (resolve_channel_units): its sensor, and the factor its curve is
+  /// scaled by (result_to_si: 1 when the samples were scaled to SI as they were read).
+  std::vector<ChannelUnit> channel_units;
+  DataKind kind = DataKind::rate;
   std::vector<AllanCurve> curves;
   CurveSource source;
 };
@@ -339,6 +302,8 @@ LogCurves oadev_in_memory(const LogArguments& log_args, unsigned threads) {
   }
   LogCurves out;
   out.channel_names = std::move(loaded.log.channel_names);
+  out.channel_units = std::move(loaded.channel_units);
+  out.kind = loaded.kind;
   for (auto& curve : compute_allan_curves(series, {Statistic::oadev}, TauSpec{}, 0.683, threads)) {
     out.curves.push_back(std::move(curve.front()));
   }
@@ -370,7 +335,11 @@ LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
   progress.finish();
   note_reading(log_args, options, result.timing);
   LogCurves out;
-  out.channel_names = std::move(result.channel_names);
+  unit.log.channel_names = std::move(result.channel_names);
+  resolve_channel_units(log_args, unit);
+  out.channel_names = std::move(unit.log.channel_names);
+  out.channel_units = std::move(unit.channel_units);
+  out.kind = unit.kind;
   for (auto& curve : result.curves) out.curves.push_back(std::move(curve.front()));
   // N phase points: one more than the samples for rate and increment input.
   const std::int64_t points = unit.kind == DataKind::phase ? result.samples : result.samples + 1;
@@ -398,8 +367,8 @@ void run_fit(const FitArguments& args) {
   if (looks_like_json(sniff(args.log.input))) {
     const auto saved_curves = read_adev_json(read_text_file(args.log.input), args.log.input);
     std::string ignored = args.log_options_given;
-    for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--gyro-unit", args.gyro_unit},
-                                        {"--accel-unit", args.accel_unit}}) {
+    for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--gyro-unit", args.log.gyro_unit},
+                                        {"--accel-unit", args.log.accel_unit}}) {
       if (!value.empty()) ignored += (ignored.empty() ? "" : ", ") + std::string(option);
     }
     if (!ignored.empty()) {
@@ -422,12 +391,11 @@ void run_fit(const FitArguments& args) {
       channels.push_back(std::move(c));
     }
   } else {
-    // The sensor from --unit is checked before the log is read.
-    LoadedChannels unit_only;
-    set_input_unit(args.log, unit_only);
-    const std::optional<Sensor> from_unit = sensor_from_unit(unit_only);
-    const std::optional<SensorUnits> per_sensor = sensor_units(args);
-    if (args.log.unit.empty() && !per_sensor) {
+    // The units are checked before the log is read: --unit names a sensor, and no unit
+    // contradicts a column's name or a ROS bag's own (as in adev and psd).
+    check_unit_names_a_sensor(args.log);
+    early_channel_units(args.log);
+    if (args.log.unit.empty() && !per_channel_units(args.log)) {
       std::cerr << "sigmatau: no --unit: the values are taken as SI (rad/s for a gyro, m/s^2 for "
                    "an accelerometer)\n";
     }
@@ -442,12 +410,11 @@ void run_fit(const FitArguments& args) {
       }
       Channel c;
       c.name = log.channel_names[i];
-      if (per_sensor) {
-        c.sensor = sensor_by_name(c.name, args.log.input);
-        scale_curve(log.curves[i], c.sensor == Sensor::gyro ? per_sensor->gyro_to_si : per_sensor->accel_to_si);
-      } else {
-        c.sensor = sensor_of(c.name, from_unit);
-      }
+      const ChannelUnit& unit = log.channel_units[i];
+      c.sensor = sensor_of(c.name, sensor_of_unit(unit, log.kind));
+      // A deviation and its interval scale with the unit; the noise identification and the EDF
+      // do not depend on it.
+      if (unit.result_to_si != 1.0) scale_curve(log.curves[i], unit.result_to_si);
       try {
         c.fit = fit_noise(log.curves[i], log.source, options);
       } catch (const Error& e) {
@@ -494,11 +461,7 @@ void add_fit_command(CLI::App& app) {
              "`adev --format json` result: a joint fit that keeps only the terms the data "
              "supports, and/or the IEEE slope read-outs");
   const std::vector<CLI::Option*> log_options = add_log_options(*command, args->log);
-  command->add_option("--gyro-unit", args->gyro_unit,
-                      "unit of the gyro columns of a log with both sensors (instead of --unit; "
-                      "the columns' sensors then come from their names)");
-  command->add_option("--accel-unit", args->accel_unit,
-                      "unit of the accelerometer columns of a log with both sensors (instead of --unit)");
+  add_sensor_unit_options(*command, args->log);
   command->add_option("--method", args->method, "joint | slopes | both")->capture_default_str();
   // An explicitly empty --terms used to mean the BIC choice silently; it is an error like --stat "".
   command->add_option("--terms", args->terms,

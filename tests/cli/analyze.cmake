@@ -36,9 +36,9 @@ sigmatau_cli_test(NAME cli_analyze_bad_gyro_unit EXIT 2 STDERR "--gyro-unit"
   ARGS analyze ${example} --time-column t --gyro-unit m/s^2 -o ${analyze_dir}/bad_unit)
 
 # One --unit for a log with both sensors: the error names --unit (the option given), the column
-# it failed on and the way out, not --accel-unit (an option the user did not give).
+# it failed on and the way out, not --accel-unit (an option the user did not give); adev's words.
 sigmatau_cli_test(NAME cli_analyze_one_unit_two_sensors EXIT 2
-  STDERR "--unit \\(applied to the accelerometer column ax; give --gyro-unit and --accel-unit apart\\)"
+  STDERR "--unit deg/s is an angular rate .*column ax is an accelerometer axis by its name; give each sensor its unit with --gyro-unit and --accel-unit"
   ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
        -o ${analyze_dir}/one_unit)
 # --tau-min / --tau-max restrict the taus the fit uses, as in fit (from 1 s: 8 of the 15 points,
@@ -53,14 +53,15 @@ add_test(NAME cli_analyze_tau_range_points
                  "-DPATTERN=\"dof\": 6,"
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_in_file.cmake)
 set_tests_properties(cli_analyze_tau_range_points PROPERTIES DEPENDS cli_analyze_tau_range)
-# --unit and --gyro-unit that disagree on the gyro columns are refused: the gyros used to be read
-# in --gyro-unit without a word, so a deg/s log came out 57x too noisy.
+# --unit and --gyro-unit together are refused (as in adev): the gyros used to be read in
+# --gyro-unit without a word, so a deg/s log came out 57x too noisy.
 sigmatau_cli_test(NAME cli_analyze_unit_conflict EXIT 2
-  STDERR "--unit deg/s and --gyro-unit rad/s both name the unit of the gyro columns and disagree"
+  STDERR "--unit deg/s names one unit for every column; with --gyro-unit / --accel-unit leave it out"
   NO_FILE ${analyze_dir}/unit_conflict
   ARGS analyze ${example} --time-column t --unit deg/s --gyro-unit rad/s -o ${analyze_dir}/unit_conflict)
-# --unit for the gyros beside --accel-unit for the accelerometers is not a conflict.
-sigmatau_cli_test(NAME cli_analyze_unit_and_accel_unit EXIT 0
-  STDOUT "wrote "
+# --unit beside --accel-unit is refused too, as in adev (--unit names one unit for every column;
+# analyze used to take it for the gyros here).
+sigmatau_cli_test(NAME cli_analyze_unit_and_accel_unit EXIT 2
+  STDERR "--unit deg/s names one unit for every column; with --gyro-unit / --accel-unit leave it out"
   ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
        --accel-unit m/s^2 -o ${analyze_dir}/unit_and_accel_unit --force)
