@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "sigmatau/analysis.hpp"
+#include "sigmatau/channel_names.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::cli {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "log_options.hpp"
-#include "sigmatau/analysis.hpp"
+#include "sigmatau/channel_names.hpp"
 
 namespace sigmatau::cli {
 

@@ -16,7 +16,7 @@
 #include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
-#include "sigmatau/analysis.hpp"
+#include "sigmatau/channel_names.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"

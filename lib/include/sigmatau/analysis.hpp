@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sigmatau/allan.hpp"
+#include "sigmatau/channel_names.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/convert.hpp"
 #include "sigmatau/log_reader.hpp"
@@ -25,15 +26,6 @@
 #include "sigmatau/taus.hpp"
 
 namespace sigmatau {
-
-/// Which sensor and axis a column holds, from its name: gx / gyro_x / wx / omega_x /
-/// angular_velocity_x -> gyro; ax / acc_x / accel_x / linear_acceleration_x -> accel; the last
-/// letter x / y / z is the axis. nullopt for anything else (temperature, time, counters).
-struct ChannelRole {
-  Sensor sensor = Sensor::gyro;
-  int axis = 0;  ///< 0 x, 1 y, 2 z
-};
-std::optional<ChannelRole> classify_channel(std::string_view name);
 
 /// One channel in SI (rad/s or m/s^2 for rate input).
 struct AnalysisChannel {
