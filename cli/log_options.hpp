@@ -33,8 +33,7 @@ struct LogArguments {
   std::string stamp;                          // header|receive; empty: header
   std::optional<std::int64_t> reorder_window; // [messages]; unset: LogOptions' default
   std::string truncated;                      // error|use (a recording cut short); empty: error
-  // Per sensor, instead of --unit (adev, psd: add_sensor_unit_options); fit and analyze keep
-  // their own.
+  // Per sensor, instead of --unit (add_sensor_unit_options: adev, psd, fit, analyze).
   std::string gyro_unit;   // unit of the columns named as gyro axes (classify_channel)
   std::string accel_unit;  // unit of the columns named as accelerometer axes
 };
@@ -92,7 +91,7 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
 
 /// The dimension of a gyro's (`gyro`) or accelerometer's unit for data of `kind`: a rate
 /// (rad/s, m/s^2), or a per-sample amount for increments and phase (rad, m/s). For
-/// --gyro-unit / --accel-unit (fit, analyze, channel_units.hpp) and --kind checks.
+/// --gyro-unit / --accel-unit (channel_units.hpp) and --kind checks.
 Dimension sensor_unit_dimension(bool gyro, DataKind kind);
 
 /// The input unit of the arguments: fills unit, to_si and dimension of `loaded`.

@@ -119,6 +119,7 @@ endif()
 
 set(fau_imu6 ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv)  # gx..gz deg/s, ax..az g
 set(fau_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_fit_analyze_units)
+file(REMOVE_RECURSE ${fau_dir})  # no output directory left by an earlier run (NO_FILE below)
 file(MAKE_DIRECTORY ${fau_dir})
 
 # One --unit for a 6-axis log is refused by fit and analyze with adev's message (analyze used to
