@@ -69,7 +69,30 @@ std::string measured_cell(const ComplianceItem& item, const std::string& unit) {
   const MeasuredParameter& p = item.measured;
   if (!p.detected) return "not detected";
   if (compared_by_magnitude(p.quantity)) return "|" + in_unit(p.value, unit) + "|";
+  // B is compared as its ADEV floor, the figure the sheet prints: shown so, labelled.
+  if (p.quantity == MeasuredQuantity::bias_instability) {
+    return "0.664 B = " + in_unit(item.compared, unit, false);
+  }
   return in_unit(item.compared, unit, false);
+}
+
+/// The interval as compared, "[low, high]" in the unit of the measured cell; for a term not
+/// detected its one-sided bound ("< 1.044 °/h", "0.664 B < 1.044 °/h").
+std::string interval_cell(const ComplianceItem& item, const std::string& unit) {
+  if (!item.measured.detected) {
+    return std::string(item.measured.quantity == MeasuredQuantity::bias_instability ? "0.664 B " : "") +
+           "< " + in_unit(item.compared_upper, unit, false);
+  }
+  std::string low = in_unit(item.compared_low, unit, false);
+  std::string high = in_unit(item.compared_upper, unit, false);
+  low = low.substr(0, low.find(' '));  // the unit once, after the upper end
+  return "[" + low + ", " + high + "]";
+}
+
+/// measured / limit with its interval: "[0.998, 1.002]".
+std::string ratio_interval(const ComplianceItem& item) {
+  if (!item.measured.detected) return "< " + format_ratio(item.margin_upper);
+  return "[" + format_ratio(item.margin_low) + ", " + format_ratio(item.margin_upper) + "]";
 }
 
 /// The limit actually compared with, and the printed value when it was scaled (one-sided
@@ -90,13 +113,14 @@ std::string label(const ComplianceItem& item) {
 /// measured / limit as shown: never "1" for a ratio that is not 1 (format_ratio).
 std::string ratio(double value) { return format_ratio(value); }
 
-/// One table row; `cells` are parameter, verdict, measured, upper bound, limit, margin, upper.
+/// One table row; `cells` are parameter, verdict, measured, interval, limit, margin, margin
+/// interval, note.
 std::string row(const std::vector<std::string>& cells) {
-  static const std::size_t kWidths[] = {36, 13, 22, 22, 40, 8, 8};
+  static const std::size_t kWidths[] = {36, 13, 24, 28, 40, 8, 18, 0};
   std::string line;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (i > 0) line += ' ';
-    line += pad(cells[i], kWidths[i], i >= 5);
+    line += pad(cells[i], kWidths[i], i == 5);
   }
   while (!line.empty() && line.back() == ' ') line.pop_back();
   return line + "\n";
@@ -108,7 +132,8 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   out << "# " << sheet.manufacturer << " " << sheet.part << " (" << sheet.name << ") against "
       << result << "; pass: upper bound within the limit, marginal: estimate within but "
       << "bound not, fail: estimate beyond, inconclusive: not detected and its upper bound "
-      << "beyond (a longer log is needed); |x|: compared by magnitude\n";
+      << "beyond (a longer log is needed); |x|: compared by magnitude; bias instability as its "
+      << "ADEV floor 0.664 B, the figure sheets print\n";
   // How strong a pass on a noise term is (fit's default intervals are 68.3 %); a calibration's
   // terms have their own default level and are always detected.
   const bool noise_terms = std::any_of(items.begin(), items.end(), [](const ComplianceItem& i) {
@@ -119,7 +144,8 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   if (const std::string note = gate_confidence_note(confidence); noise_terms && !note.empty()) {
     out << "# " << note << "\n";
   }
-  out << row({"parameter", "verdict", "measured", "upper bound", "limit", "margin", "upper"});
+  out << row({"parameter", "verdict", "measured", "interval", "limit", "margin", "margin interval",
+              "note"});
   std::vector<const ComplianceItem*> informational;
   for (const auto& item : items) {
     if (item.measured.quantity == MeasuredQuantity::frame_rotation) {
@@ -129,15 +155,13 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
     const std::string verdict(to_string(item.verdict));
     if (item.verdict == Verdict::not_specified) {
       out << row({label(item), verdict, measured_cell(item, display_unit(item.measured))});
-    } else if (!item.measured.detected) {
-      // Only a bound: no estimate and no estimate margin to show.
-      out << row({label(item), verdict, "not detected",
-                  "< " + in_unit(item.compared_upper, item.limit_unit, false), limit_cell(item),
-                  "-", ratio(item.margin_upper)});
     } else {
+      // A term not detected has only a bound: no estimate and no estimate margin ("-").
+      const std::string note =
+          verdict_qualifiers(fail_within_uncertainty(item), item.measured.fit_p_value);
       out << row({label(item), verdict, measured_cell(item, item.limit_unit),
-                  in_unit(item.compared_upper, item.limit_unit, false), limit_cell(item),
-                  ratio(item.margin), ratio(item.margin_upper)});
+                  interval_cell(item, item.limit_unit), limit_cell(item),
+                  item.measured.detected ? ratio(item.margin) : "-", ratio_interval(item), note});
     }
   }
   if (!informational.empty()) {
@@ -156,7 +180,15 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   for (const auto& item : items) inconclusive += item.verdict == Verdict::inconclusive;
   const std::string counted = std::to_string(checked) + " of " +
                               std::to_string(checked + unspecified) + " items checked";
-  // Beside the verdict (RESULT stays the last line): a typ limit is not a guarantee.
+  // Beside the verdict (RESULT stays the last line): a typ limit is not a guarantee; what the
+  // notes mean when a row has one.
+  if (std::any_of(items.begin(), items.end(), fail_within_uncertainty)) {
+    out << "# note: " << kWithinUncertaintyNote << "\n";
+  }
+  if (std::any_of(items.begin(), items.end(),
+                  [](const ComplianceItem& i) { return fit_rejected(i.measured); })) {
+    out << "# note: " << kFitRejectedNote << "\n";
+  }
   if (any_typical_limit(items)) out << "# note: " << kTypicalLimitNote << "\n";
   if (any_failed(items)) {
     out << "RESULT: FAIL (" << counted << ")\n";

@@ -80,8 +80,8 @@ TEST_CASE("a measured term the sheet does not print shows its value; an accelero
                 "m/s^3/sqrt(Hz) measured; the sheet prints no limit |") != std::string::npos);
   CHECK(md.find("rate random walk") == std::string::npos);
   CHECK(files.files.at("report.html").find("accel acceleration random walk z") != std::string::npos);
-  // In the HTML it stands in the rule column (the ratio column stays narrow).
-  CHECK(files.files.at("report.html").find("<td></td><td></td><td></td><td>1.5e-05 [1.2e-05, 3.7e-05] "
-                                           "m/s^3/sqrt(Hz) measured; the sheet prints no limit</td>") !=
+  // In the HTML it stands in the measured column, with no limit or ratio beside it.
+  CHECK(files.files.at("report.html").find("<td>not specified</td><td>1.5e-05 [1.2e-05, 3.7e-05] "
+                                           "m/s^3/sqrt(Hz) measured; the sheet prints no limit</td><td></td><td></td>") !=
         std::string::npos);
 }

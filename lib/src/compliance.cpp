@@ -1,6 +1,8 @@
 // Compliance verdicts: measured parameters against data-sheet limits (see compliance.hpp).
 #include "sigmatau/compliance.hpp"
 
+#include "sigmatau/fit.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -79,6 +81,17 @@ Candidate axis_to_axis(const Candidate& c, const SpecValue& value) {
   }
   return {c.field, 1.0, std::string(kDeltaRule) + "against the printed axis-to-axis misalignment",
           ""};
+}
+
+/// The interval's lower bound as compared with the limit (see ComplianceItem::compared_low).
+double lower_as_compared(const MeasuredParameter& p) {
+  if (!p.detected) return std::numeric_limits<double>::quiet_NaN();
+  if (p.quantity == MeasuredQuantity::bias_instability) return kFlickerFloorFactor * p.ci_low;
+  if (compared_by_magnitude(p.quantity)) {
+    if (p.ci_low <= 0 && p.ci_high >= 0) return 0;  // the interval holds 0
+    return std::min(std::abs(p.ci_low), std::abs(p.ci_high));
+  }
+  return p.ci_low;
 }
 
 /// The estimate and its upper bound as compared with the limit. A term not detected has no
@@ -175,11 +188,13 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
         item.limit_factor = candidate.limit_factor;
         item.limit_factor_text = candidate.factor_text;
         std::tie(item.compared, item.compared_upper) = as_compared(p);
+        item.compared_low = lower_as_compared(p);
         item.rule = candidate.rule;
         if (item.limit_is_typical) item.rule += " (no max printed: typical value used)";
         if (!(item.limit_si > 0)) continue;  // a zero limit cannot be a ratio
         item.margin = item.compared / item.limit_si;
         item.margin_upper = item.compared_upper / item.limit_si;
+        item.margin_low = item.compared_low / item.limit_si;
         if (!p.detected) {
           // Only a bound: within the limit it shows the term is small enough; beyond it the log
           // cannot tell (a longer one would), which is not evidence of a failure. A NaN bound
@@ -204,6 +219,7 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
       item.measured = p;
       item.verdict = Verdict::not_specified;
       std::tie(item.compared, item.compared_upper) = as_compared(p);
+      item.compared_low = lower_as_compared(p);
       if (p.quantity == MeasuredQuantity::frame_rotation) {
         item.rule =
             "informational: rotation vector carrying the accelerometer triad's axes onto the "
@@ -214,6 +230,13 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
     }
   }
   return items;
+}
+
+bool fit_rejected(const MeasuredParameter& p) { return p.fit_p_value < kMisfitPValue; }
+
+bool fail_within_uncertainty(const ComplianceItem& item) {
+  return item.verdict == Verdict::fail && item.measured.detected &&
+         item.compared_low <= item.limit_si;
 }
 
 bool any_failed(const std::vector<ComplianceItem>& items) {
@@ -258,14 +281,24 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
       j["upper_bound"] = item.measured.upper_bound;
     }
     j["verdict"] = std::string(to_string(item.verdict));
+    if (std::isfinite(item.measured.fit_p_value)) {
+      j["fit_p_value"] = item.measured.fit_p_value;
+      j["fit_rejected"] = fit_rejected(item.measured);
+    }
     if (item.verdict != Verdict::not_specified) {
       j["spec_field"] = item.spec_field;
       j["limit_text"] = item.limit_text;
+      j["limit_unit"] = item.limit_unit;
       j["limit_is_typical"] = item.limit_is_typical;
       j["limit_si"] = item.limit_si;
       if (item.measured.detected) j["compared"] = item.compared;
       j["compared_upper"] = item.compared_upper;
-      if (item.measured.detected) j["margin"] = item.margin;
+      if (item.measured.detected) {
+        j["margin"] = item.margin;
+        j["compared_low"] = item.compared_low;
+        j["margin_low"] = item.margin_low;
+        j["within_uncertainty"] = fail_within_uncertainty(item);
+      }
       j["margin_upper"] = item.margin_upper;
       j["limit_factor"] = item.limit_factor;
       if (!item.limit_factor_text.empty()) j["limit_factor_text"] = item.limit_factor_text;

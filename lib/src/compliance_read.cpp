@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 
+#include "sigmatau/channel_names.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/triad_frames.hpp"
@@ -17,21 +18,25 @@ namespace {
 
 using nlohmann::json;
 
-std::string axis_letter(const std::string& name, const std::string& file) {
-  if (!name.empty()) {
-    const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(name.back())));
-    if (c == 'x' || c == 'y' || c == 'z') return std::string(1, c);
-  }
-  throw Error(file + ": channel \"" + name + "\" does not end in x, y or z (cannot tell its axis)");
-}
-
-Sensor sensor_of(const json& channel, const std::string& name, const std::string& file) {
+/// Sensor and axis of a fit channel: its "quantity" when given (then the name's last letter is
+/// the axis), else the name by the one column-name rule (classify_channel).
+ChannelRole role_of(const json& channel, const std::string& name, const std::string& file) {
   const std::string quantity = channel.value("quantity", "");
-  if (quantity == "angular_rate") return Sensor::gyro;
-  if (quantity == "specific_force" || quantity == "acceleration") return Sensor::accel;
-  if (!name.empty() && (name[0] == 'g' || name[0] == 'G' || name[0] == 'w')) return Sensor::gyro;
-  if (!name.empty() && (name[0] == 'a' || name[0] == 'A')) return Sensor::accel;
-  throw Error(file + ": channel \"" + name + "\" has no quantity and its name does not say gyro (g..) or accelerometer (a..)");
+  std::optional<Sensor> sensor;
+  if (quantity == "angular_rate") sensor = Sensor::gyro;
+  if (quantity == "specific_force" || quantity == "acceleration") sensor = Sensor::accel;
+  if (sensor) {
+    const char c = name.empty() ? '\0'
+                                : static_cast<char>(std::tolower(static_cast<unsigned char>(name.back())));
+    if (c != 'x' && c != 'y' && c != 'z') {
+      throw Error(file + ": channel \"" + name + "\" does not end in x, y or z (cannot tell its axis)");
+    }
+    return {*sensor, c - 'x'};
+  }
+  if (const auto role = classify_channel(name)) return *role;
+  throw Error(file + ": channel \"" + name +
+              "\" has no quantity and its name does not say gyro (gx, gyro_x, wx, ...) or "
+              "accelerometer (ax, accel_x, ...) with an axis x, y or z");
 }
 
 double number(const json& j, const char* key, const std::string& where) {
@@ -48,9 +53,15 @@ void read_fit(const json& doc, const std::string& file, std::vector<MeasuredPara
       {"K", MeasuredQuantity::rate_random_walk}};
   for (const auto& channel : doc.at("channels")) {
     const std::string name = channel.value("name", "");
-    const Sensor sensor = sensor_of(channel, name, file);
-    const std::string axis = axis_letter(name, file);
+    const ChannelRole role = role_of(channel, name, file);
+    const Sensor sensor = role.sensor;
+    const std::string axis(1, static_cast<char>('x' + role.axis));
     if (!channel.contains("parameters")) continue;
+    // A joint fit's p value (a slopes fit has none): a rejected fit marks its verdicts.
+    const double p_value = channel.contains("p_value") && channel["p_value"].is_number() &&
+                                   channel.value("method", "joint") == "joint"
+                               ? channel["p_value"].get<double>()
+                               : std::numeric_limits<double>::quiet_NaN();
     for (const auto& [key, quantity] : kTerms) {
       if (!channel["parameters"].contains(key)) continue;
       const json& p = channel["parameters"][key];
@@ -67,11 +78,17 @@ void read_fit(const json& doc, const std::string& file, std::vector<MeasuredPara
                        .axis = axis,
                        .detected = false,
                        .upper_bound = bound.is_null() ? std::numeric_limits<double>::quiet_NaN()
-                                                      : bound.get<double>()});
+                                                      : bound.get<double>(),
+                       .fit_p_value = p_value});
         continue;
       }
-      out.push_back({sensor, quantity, axis, number(p, "value", where), number(p, "ci_low", where),
-                     number(p, "ci_high", where)});
+      out.push_back({.sensor = sensor,
+                     .quantity = quantity,
+                     .axis = axis,
+                     .value = number(p, "value", where),
+                     .ci_low = number(p, "ci_low", where),
+                     .ci_high = number(p, "ci_high", where),
+                     .fit_p_value = p_value});
     }
   }
 }

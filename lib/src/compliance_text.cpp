@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sigmatau/compliance.hpp"
+#include "sigmatau/fit.hpp"
 
 namespace sigmatau {
 
@@ -26,6 +27,21 @@ std::string format_ratio(double ratio) {
   std::string out = text;
   if (!out.empty() && out.back() == '.') out.pop_back();  // "%#g" keeps a bare point: "12."
   return out;
+}
+
+std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value) {
+  std::string text = within_uncertainty ? "within uncertainty" : "";
+  if (fit_p_value < kMisfitPValue) {
+    char p[32];
+    std::snprintf(p, sizeof p, "%.2g", fit_p_value);
+    text += std::string(text.empty() ? "" : "; ") + "fit rejected, p = " + p;
+  }
+  return text;
+}
+
+std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value) {
+  const std::string qualifiers = verdict_qualifiers(within_uncertainty, fit_p_value);
+  return std::string(verdict) + (qualifiers.empty() ? "" : " (" + qualifiers + ")");
 }
 
 bool any_typical_limit(const std::vector<ComplianceItem>& items) {

@@ -11,6 +11,7 @@
 #include "report_common.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/units.hpp"
 
@@ -49,8 +50,102 @@ std::string verdict_rule(const json& results) {
   const std::string note = gate_confidence_note(confidence);
   return "pass: the upper bound of the " + fmt(100 * confidence, 3) +
          " % interval is within the limit; marginal: the estimate is within the limit but its "
-         "bound is not; fail: the estimate exceeds the limit." +
+         "bound is not; fail: the estimate exceeds the limit; " + kWithinUncertaintyNote + "." +
          (note.empty() ? std::string() : " " + note);
+}
+
+/// True when some compliance row rests on a rejected fit (see compliance.hpp, fit_rejected).
+bool any_fit_rejected(const json& compliance) {
+  for (const auto& item : compliance["items"]) {
+    if (item.value("fit_rejected", false)) return true;
+  }
+  return false;
+}
+
+/// The verdict cell: "fail", "fail (within uncertainty)", "pass (fit rejected, p = 0)".
+std::string verdict_cell(const json& item) {
+  return verdict_text(item.value("verdict", ""), item.value("within_uncertainty", false),
+                      item_number(item, "fit_p_value"));
+}
+
+/// Channels whose joint fit was rejected (p below kMisfitPValue), in results.json's order.
+std::vector<std::string> rejected_fits(const json& results) {
+  std::vector<std::string> names;
+  if (!results.contains("fit") || !results["fit"].contains("channels")) return names;
+  for (const auto& fit : results["fit"]["channels"]) {
+    if (fit.contains("p_value") && fit["p_value"].is_number() &&
+        fit["p_value"].get<double>() < kMisfitPValue) {
+      names.push_back(fit.value("name", "?"));
+    }
+  }
+  return names;
+}
+
+/// Warnings that say the declared unit is implausible (data_checks.hpp): the channels they name.
+std::vector<std::string> implausible_units(const std::vector<std::string>& warnings) {
+  std::vector<std::string> names;
+  for (const auto& w : warnings) {
+    if (w.find("the data look like") == std::string::npos &&
+        w.find("is not near 1 g") == std::string::npos) {
+      continue;
+    }
+    names.push_back(w.substr(0, w.find(':')));
+  }
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+/// The banner at the top of the report when there are warnings: their count and the most
+/// serious kinds (a rejected fit, implausible units), in plain text (the caller escapes it).
+std::string warning_banner(const json& results, const std::vector<std::string>& warnings) {
+  std::string text = std::to_string(warnings.size()) + (warnings.size() == 1 ? " warning" : " warnings");
+  const auto rejected = rejected_fits(results);
+  const auto units = implausible_units(warnings);
+  if (!rejected.empty()) {
+    text += "; fit rejected for " + joined(rejected) +
+            ": no model of the noise terms describes the curve (p < 0.001), so their terms, "
+            "the filter values and any verdict from them are not to be trusted";
+  }
+  if (!units.empty()) {
+    text += "; implausible units for " + joined(units) +
+            ": the values look like another unit, so every number from them is off by that factor";
+  }
+  return text + ".";
+}
+
+/// The measured side of a compliance row in the limit's printed unit, with its interval:
+/// "0.007001 [0.006994, 0.007008] °/s/√Hz", "0.664 B = 8.18 [7.72, 8.71] °/h" (the floor the
+/// sheet prints), "< 1.044 °/h" for a term not detected. SI when the unit does not convert.
+std::string measured_cell(const json& item) {
+  const std::string unit = item.value("limit_unit", "");
+  double factor = 1;
+  std::string shown = unit;
+  try {
+    factor = unit.empty() ? 1 : parse_unit(unit).factor;
+  } catch (const Error&) {
+    shown.clear();
+  }
+  if (shown.empty()) shown = "SI";
+  const std::string quantity = item.value("quantity", "");
+  const std::string prefix = quantity == "bias_instability" ? "0.664 B " : "";
+  const bool magnitude = quantity != "white_noise" && quantity != "bias_instability" &&
+                         quantity != "rate_random_walk";
+  if (!undetected(item) && !item.contains("compared")) return "";  // an older file
+  if (undetected(item)) {
+    return "not detected: " + prefix + "< " + fmt(item_number(item, "compared_upper") / factor) + " " + shown;
+  }
+  std::string text = (prefix.empty() ? "" : prefix + "= ") + (magnitude ? "|x| " : "") +
+                     fmt(item_number(item, "compared") / factor);
+  if (item.contains("compared_low")) {
+    text += " [" + fmt(item_number(item, "compared_low") / factor) + ", " +
+            fmt(item_number(item, "compared_upper") / factor) + "]";
+  }
+  return text + " " + shown;
 }
 
 /// Under the summary table: B beside the floor a data sheet prints (a STIM300 at its typical
@@ -94,11 +189,13 @@ std::string unspecified_measurement(const json& item) {
                            : quantity == "rate_random_walk" ? u.walk
                                                             : std::string();
   if (!item.contains("value") || !item["value"].is_number()) return "";
-  std::string text = fmt(in_unit(item["value"].get<double>(), unit));
+  // B is shown as the floor 0.664 B a sheet would print, beside the other rows' floors.
+  const double scale = quantity == "bias_instability" ? kFlickerFloorFactor : 1.0;
+  std::string text = (scale != 1.0 ? "0.664 B = " : "") + fmt(scale * in_unit(item["value"].get<double>(), unit));
   if (item.contains("ci_low") && item.contains("ci_high") && item["ci_low"].is_number() &&
       item["ci_high"].is_number()) {
-    text += " [" + fmt(in_unit(item["ci_low"].get<double>(), unit)) + ", " +
-            fmt(in_unit(item["ci_high"].get<double>(), unit)) + "]";
+    text += " [" + fmt(scale * in_unit(item["ci_low"].get<double>(), unit)) + ", " +
+            fmt(scale * in_unit(item["ci_high"].get<double>(), unit)) + "]";
   }
   return text + (unit.empty() ? " (SI)" : " " + unit) + " measured; the sheet prints no limit";
 }
@@ -106,8 +203,13 @@ std::string unspecified_measurement(const json& item) {
 /// The "measured / limit" cell of the compliance tables.
 std::string margin_cell(const json& item) {
   if (item.value("verdict", "") == "not specified") return "";
-  if (undetected(item)) return "not detected (upper bound only)";
-  return item.contains("margin") ? format_ratio(item_number(item, "margin")) : "";
+  if (undetected(item)) return "< " + format_ratio(item_number(item, "margin_upper")) + " (not detected)";
+  if (!item.contains("margin")) return "";
+  const std::string estimate = format_ratio(item_number(item, "margin"));
+  const std::string upper = format_ratio(item_number(item, "margin_upper"));
+  // Older files have no lower bound: the upper one alone.
+  if (!item.contains("margin_low")) return estimate + " (upper " + upper + ")";
+  return estimate + " [" + format_ratio(item_number(item, "margin_low")) + ", " + upper + "]";
 }
 
 std::string verdict_class(const std::string& verdict) {
@@ -118,6 +220,21 @@ std::string verdict_class(const std::string& verdict) {
   return "na";
 }
 
+/// " (floor 0.664 B = 8.18 [7.72, 8.71])", or " (floor 0.664 B < 1.04)" for a bound: B's ADEV
+/// floor, the figure a data sheet prints as bias stability, in B's unit.
+std::string floor_text(const json& b, const std::string& unit) {
+  const double f = kFlickerFloorFactor;
+  if (b.contains("value")) {
+    return " (floor 0.664 B = " + fmt(f * in_unit(b["value"].get<double>(), unit)) + " [" +
+           fmt(f * in_unit(b["ci_low"].get<double>(), unit)) + ", " +
+           fmt(f * in_unit(b["ci_high"].get<double>(), unit)) + "])";
+  }
+  if (b.contains("upper_bound") && b["upper_bound"].is_number()) {
+    return " (floor 0.664 B < " + fmt(f * in_unit(b["upper_bound"].get<double>(), unit), 4) + ")";
+  }
+  return "";
+}
+
 /// Rows of the per-channel parameter table: N, B, K (Q, R when fitted) in data-sheet units.
 std::vector<std::pair<std::string, std::string>> parameter_cells(const json& results,
                                                                  const json& channel) {
@@ -126,9 +243,13 @@ std::vector<std::pair<std::string, std::string>> parameter_cells(const json& res
   const json* fit = find_fit(results, channel.value("name", ""));
   const std::pair<const char*, std::string> terms[] = {
       {"N", u.white}, {"B", u.bias}, {"K", u.walk}, {"Q", u.quantization}, {"R", u.ramp}};
+  const bool spec = results.contains("compliance") && !results["compliance"].is_null();
   for (const auto& [key, unit] : terms) {
     std::string text;
     if (fit && (*fit)["parameters"].contains(key)) text = parameter_text((*fit)["parameters"][key], unit);
+    // With a data sheet, B also as the floor the sheet prints, so the number beside the verdict
+    // is the one compared (a coefficient of 12.3 deg/h read as 54 % over a sheet's 8 deg/h).
+    if (spec && std::string(key) == "B" && !text.empty()) text += floor_text((*fit)["parameters"]["B"], unit);
     cells.emplace_back(key, text);
   }
   return cells;
@@ -150,6 +271,9 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
   std::ostringstream md;
   const json& input = results["input"];
   md << "# sigmatau report\n\n";
+  if (!warnings.empty()) {
+    md << "> **Warning:** " << warning_banner(results, warnings) << " See [Warnings](#warnings).\n\n";
+  }
   md << "- input: `" << input.value("path", "") << "` (" << input.value("samples", 0) << " samples at "
      << fmt(input.value("rate_hz", 0.0)) << " Hz, " << fmt(input.value("duration_s", 0.0) / 3600.0, 3)
      << " h)\n";
@@ -178,15 +302,16 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
   }
   md << "\n" << kBiasFloorNote << "\n";
   if (results.contains("compliance") && !results["compliance"].is_null()) {
-    md << "\n| parameter | verdict | measured / limit | upper bound / limit | limit |\n|---|---|---|---|---|\n";
+    md << "\n| parameter | verdict | measured [interval] | limit | measured / limit [interval] |\n"
+          "|---|---|---|---|---|\n";
     for (const auto& item : results["compliance"]["items"]) {
-      md << "| " << item_label(item) << " | " << item.value("verdict", "") << " | "
-         << (item.value("verdict", "") == "not specified" ? unspecified_measurement(item) : margin_cell(item))
-         << " | "
-         << (item.contains("margin_upper") ? format_ratio(item_number(item, "margin_upper")) : "") << " | "
-         << limit_cell(item) << " |\n";
+      const bool specified = item.value("verdict", "") != "not specified";
+      md << "| " << item_label(item) << " | " << verdict_cell(item) << " | "
+         << (specified ? measured_cell(item) : unspecified_measurement(item)) << " | "
+         << limit_cell(item) << " | " << margin_cell(item) << " |\n";
     }
     md << "\n" << verdict_rule(results) << "\n";
+    if (any_fit_rejected(results["compliance"])) md << "\n" << kFitRejectedNote << ".\n";
     if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
   if (!warnings.empty()) {
@@ -204,7 +329,8 @@ table{border-collapse:collapse;margin:.6em 0;font-size:.95em}td,th{border:1px so
 th{background:#f3f3f3}.pass{background:#dff3df}.marginal{background:#fff1cc}.fail{background:#f8d7d7}.inconclusive{background:#e4e8f0}.na{color:#888}
 .verdict{font-size:1.3em;font-weight:bold;padding:.3em .8em;display:inline-block;border-radius:4px}
 .plot svg{width:100%;height:auto}pre{background:#f7f7f7;padding:.8em;overflow-x:auto;font-size:.85em}
-.muted{color:#666;font-size:.9em})css";
+.muted{color:#666;font-size:.9em}
+.banner{background:#fff1cc;border:2px solid #e6a000;border-radius:4px;padding:.6em .9em;margin:1em 0})css";
 
 std::string report_html(const json& results, const PlotSet& plots,
                         const std::vector<std::string>& warnings) {
@@ -215,6 +341,12 @@ std::string report_html(const json& results, const PlotSet& plots,
   h << "<h1>sigmatau report</h1><p class=\"muted\">" << html_escape(input.value("path", ""))
     << " &middot; sigmatau " << html_escape(results.value("version", "")) << " &middot; "
     << html_escape(results.value("created_utc", "")) << "</p>\n";
+
+  if (!warnings.empty()) {
+    h << "<div class=\"banner\" id=\"warning-banner\"><strong>Warning:</strong> "
+      << html_escape(warning_banner(results, warnings))
+      << " <a href=\"#warnings\">See the warnings.</a></div>\n";
+  }
 
   // Summary and verdict.
   h << "<h2 id=\"summary\">Summary</h2>\n";
@@ -259,20 +391,22 @@ std::string report_html(const json& results, const PlotSet& plots,
   // Compliance.
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     h << "<h2 id=\"compliance\">Data-sheet compliance</h2>\n<table><tr><th>parameter</th><th>verdict</th>"
-         "<th>measured / limit</th><th>upper bound / limit</th><th>limit as printed</th><th>rule</th></tr>\n";
+         "<th>measured [interval]</th><th>limit as printed</th><th>measured / limit [interval]</th>"
+         "<th>rule</th></tr>\n";
     for (const auto& item : results["compliance"]["items"]) {
       const std::string verdict = item.value("verdict", "");
-      h << "<tr class=\"" << verdict_class(verdict) << "\"><td>"
-        << html_escape(item_label(item))
-        << "</td><td>" << html_escape(verdict) << "</td><td>" << html_escape(margin_cell(item)) << "</td><td>"
-        << (item.contains("margin_upper") ? format_ratio(item_number(item, "margin_upper")) : "") << "</td><td>"
-        << html_escape(limit_cell(item))
-        // A row the sheet has no limit for: what was measured goes where the rule would be.
-        << "</td><td>"
-        << html_escape(verdict == "not specified" ? unspecified_measurement(item) : item.value("rule", ""))
-        << "</td></tr>\n";
+      const bool specified = verdict != "not specified";
+      h << "<tr class=\"" << verdict_class(verdict) << "\"><td>" << html_escape(item_label(item))
+        << "</td><td>" << html_escape(verdict_cell(item)) << "</td><td>"
+        // A row the sheet has no limit for: what was measured, and that no limit is printed.
+        << html_escape(specified ? measured_cell(item) : unspecified_measurement(item)) << "</td><td>"
+        << html_escape(limit_cell(item)) << "</td><td>" << html_escape(margin_cell(item))
+        << "</td><td>" << html_escape(item.value("rule", "")) << "</td></tr>\n";
     }
     h << "</table>\n<p class=\"muted\">" << html_escape(verdict_rule(results)) << "</p>\n";
+    if (any_fit_rejected(results["compliance"])) {
+      h << "<p class=\"muted\">" << html_escape(kFitRejectedNote) << ".</p>\n";
+    }
     if (any_inconclusive(results["compliance"])) {
       h << "<p class=\"muted\">" << html_escape(kInconclusiveNote) << "</p>\n";
     }

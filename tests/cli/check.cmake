@@ -32,7 +32,7 @@ foreach(length 1h 5min)
                        FIXTURES_SETUP check_n_only_fit_${length})
 endforeach()
 sigmatau_cli_test(NAME cli_check_undetected_pass EXIT 0 WORKING_DIRECTORY ${check_dir}
-  STDOUT "gyro bias_instability x +pass +not detected +< 0\\.[0-9]+ .*RESULT: no check failed \\([0-9]+ of [0-9]+ items checked\\).$"
+  STDOUT "gyro bias_instability x +pass +not detected +0\\.664 B < 0\\.[0-9]+ .*RESULT: no check failed \\([0-9]+ of [0-9]+ items checked\\).$"
   ARGS check --spec safran_stim300 n_only_1h.json)
 sigmatau_cli_test(NAME cli_check_undetected_inconclusive EXIT 0 WORKING_DIRECTORY ${check_dir}
   STDOUT "gyro bias_instability x +inconclusive +not detected.*RESULT: no check failed \\([0-9]+ of [0-9]+ items checked\\); 3 inconclusive"
@@ -69,12 +69,12 @@ sigmatau_cli_test(NAME cli_check_calibration_frames_json EXIT 0
   ARGS check --spec safran_stim300 ${check_data}/cal_accel_rotated.json --format json)
 # A negative bias keeps its sign; the bars say its magnitude is what is compared.
 sigmatau_cli_test(NAME cli_check_signed_bias EXIT 0
-  STDOUT "accel bias x +pass +\\|-0\\.0003338 mg\\| +0\\.01375 mg"
+  STDOUT "accel bias x +pass +\\|-0\\.0003338 mg\\| +\\[0, 0\\.01375 mg\\]"
   ARGS check --spec safran_stim300 ${check_data}/cal_accel_rotated.json)
 
 # The limit column shows the limit used: one-sided, the printed density / sqrt(2) beside it.
 sigmatau_cli_test(NAME cli_check_one_sided_limit EXIT 0
-  STDOUT "gyro white_noise x +pass .*1\\.98 mdps/√Hz \\(2\\.8 mdps/√Hz /√2\\) \\(typ\\) +0\\.579 +0\\.608"
+  STDOUT "gyro white_noise x +pass .*1\\.98 mdps/√Hz \\(2\\.8 mdps/√Hz /√2\\) \\(typ\\) +0\\.579 +\\[0\\.550, 0\\.608\\]"
   ARGS check --spec tdk_icm42688p ${check_data}/fit_pass.json --density-convention one-sided)
 sigmatau_cli_test(NAME cli_check_one_sided_limit_json EXIT 0
   STDOUT "\"limit_factor\": 0\\.7071"
@@ -84,11 +84,11 @@ sigmatau_cli_test(NAME cli_check_one_sided_limit_json EXIT 0
 # and the °/hr row (11 characters, 12 bytes) start their next column at the same place (CMake
 # regular expressions have no {n}: the runs of spaces are written out).
 sigmatau_cli_test(NAME cli_check_columns_aligned EXIT 0
-  STDOUT "gyro white_noise x                   pass          0\\.06875 °/√hr          0\\.07219 °/√hr          0\\.15 °/√hr \\(typ\\)                            0\\.458.*gyro bias_instability x              pass          0\\.6851 °/hr            0\\.8221 °/hr            2 °/hr \\(typ\\)                                0\\.343"
+  STDOUT "gyro white_noise x                   pass          0\\.06875 °/√hr            \\[0\\.06532, 0\\.07219 °/√hr\\]     0\\.15 °/√hr \\(typ\\)                            0\\.458.*gyro bias_instability x              pass          0\\.664 B = 0\\.6851 °/hr    \\[0\\.5481, 0\\.8221 °/hr\\]        2 °/hr \\(typ\\)                                0\\.343"
   ARGS check --spec adi_adis16465 ${check_data}/fit_pass.json)
 # analyze's summary shows the same: a one-sided density's limit with its /√2.
 sigmatau_cli_test(NAME cli_check_one_sided_analyze EXIT 0 WORKING_DIRECTORY ${check_dir}
-  STDOUT "\\| gyro white noise x \\| pass \\| [0-9.]+ \\| [0-9.]+ \\| 2\\.8 mdps/√Hz /√2 \\(typ\\) \\|"
+  STDOUT "\\| gyro white noise x \\| pass \\| [0-9.]+ \\[[0-9.]+, [0-9.]+\\] mdps/√Hz \\| 2\\.8 mdps/√Hz /√2 \\(typ\\) \\| [0-9.]+ \\[[0-9.]+, [0-9.]+\\] \\|"
   ARGS analyze n_only_5min.csv --time-column t --gyro-unit rad/s --spec tdk_icm42688p
        --density-convention one-sided -o analyze_one_sided --force)
 set_tests_properties(cli_check_one_sided_analyze PROPERTIES FIXTURES_REQUIRED check_n_only_log_5min)

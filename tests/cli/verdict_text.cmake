@@ -4,7 +4,7 @@ set(verdict_data ${PROJECT_SOURCE_DIR}/tests/data/check)
 # analyze's summary), typ and max limits are marked, the note that a typ is not a guarantee
 # stands just before RESULT, and the rule's header advises --ci 0.95 for a gate.
 sigmatau_cli_test(NAME cli_check_ratio_digits_typ_note EXIT 1
-  STDOUT "--ci 0\\.95.*gyro white_noise x +fail .*0\\.007 °/s/√Hz \\(typ\\) +1\\.001 +1\\.004.*accel bias_instability x +pass .*15 µg \\(max\\) .*# note: limits marked \\(typ\\) are typical values, not guaranteed maxima[^\n]*\nRESULT: FAIL"
+  STDOUT "--ci 0\\.95.*gyro white_noise x +fail .*0\\.007 °/s/√Hz \\(typ\\) +1\\.001 +\\[0\\.9984, 1\\.004\\] +within uncertainty.*accel bias_instability x +pass .*15 µg \\(max\\) .*# note: limits marked \\(typ\\) are typical values, not guaranteed maxima[^\n]*\nRESULT: FAIL"
   ARGS check --spec xsens_mti630 ${verdict_data}/fit_at_typical.json)
 # The same result at 95 %: the advice to use --ci 0.95 is not repeated to a result that did.
 file(READ ${verdict_data}/fit_at_typical.json verdict_fit_text)

@@ -4,7 +4,9 @@
 /// value gets a verdict and margins:
 ///   pass      the upper confidence bound is within the limit,
 ///   marginal  the estimate is within the limit but its upper bound is not,
-///   fail      the estimate exceeds the limit,
+///   fail      the estimate exceeds the limit (shown as "fail (within uncertainty)" when the
+///             interval's lower bound is still at or below the limit: not a significant failure
+///             at that confidence, though it counts as a fail for `check`'s exit status),
 ///   not specified  the sheet prints no value for it.
 /// A noise term the fit left out (not detected: the data gave only a one-sided upper bound) is
 /// still checked, by its bound alone: pass when the bound is within the limit (the term is at
@@ -29,6 +31,7 @@
 ///  - the rotation from the accelerometer triad to the gyro triad is reported, never judged (no
 ///    data sheet field prints it).
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,7 +80,15 @@ struct MeasuredParameter {
   /// One-sided upper bound on the term when !detected (SI, the unit of `value`; NaN when the
   /// fit could not bound it).
   double upper_bound = 0;
+  /// p value of the joint fit the term comes from (fit.hpp, ChannelFit::p_value); NaN when not
+  /// known (a calibration, a slopes fit, an older file). Below kMisfitPValue the fit is
+  /// rejected (no model describes the curve) and a verdict from it is marked so.
+  double fit_p_value = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// True when the term's fit was rejected: fit_p_value below fit.hpp's kMisfitPValue (1e-3), the
+/// threshold at which analyze and fit warn that no model describes the curve.
+bool fit_rejected(const MeasuredParameter& p);
 
 /// pass / marginal / fail / not specified as in the file comment; inconclusive: the term was not
 /// detected and its upper bound exceeds the limit.
@@ -101,8 +112,12 @@ struct ComplianceItem {
                                 ///< NaN when the term was not detected
   double compared_upper = 0;    ///< its upper confidence bound as compared [SI] (not detected:
                                 ///< the one-sided upper bound as compared, e.g. 0.664 B_upper)
+  double compared_low = 0;      ///< its lower confidence bound as compared [SI] (0.664 B_low;
+                                ///< for a magnitude, the smallest |x| in the interval, 0 when
+                                ///< the interval holds 0); NaN when not detected
   double margin = 0;            ///< compared / limit (< 1 is within); NaN when not detected
   double margin_upper = 0;      ///< compared_upper / limit
+  double margin_low = 0;        ///< compared_low / limit; NaN when not detected
   std::string rule;             ///< one line: how the two were put on the same footing
 };
 
@@ -116,6 +131,28 @@ struct ComplianceOptions {
 std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter>& measured,
                                              const DataSheet& sheet,
                                              const ComplianceOptions& options = {});
+
+/// True when the item failed but its lower bound is at or below the limit: the estimate is over,
+/// the interval is not wholly over, so the failure is not significant at the intervals' level.
+/// Still a fail (any_failed, `check`'s exit status 1).
+bool fail_within_uncertainty(const ComplianceItem& item);
+
+/// What qualifies a verdict, "" when nothing: "within uncertainty" (a fail whose lower bound is
+/// within the limit) and "fit rejected, p = 3e-07" (the fit behind it describes no curve), joined
+/// by "; ". `fit_p_value` NaN or at/above kMisfitPValue adds nothing.
+std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value);
+
+/// The verdict as tables show it: "fail", or "fail (within uncertainty; fit rejected, p = 0)".
+std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value);
+
+/// Said where the verdicts are explained, with kFitRejectedNote when a row is marked.
+inline constexpr const char* kWithinUncertaintyNote =
+    "fail (within uncertainty): the estimate exceeds the limit but the interval's lower bound "
+    "does not, so the failure is not significant at this confidence (it still counts as a "
+    "fail, and check still exits 1)";
+inline constexpr const char* kFitRejectedNote =
+    "fit rejected: no model of the noise terms describes that channel's curve (p below 0.001), "
+    "so the value and its verdict are not to be trusted (see the warnings)";
 
 /// True when any item failed (the `check` exit code 1).
 bool any_failed(const std::vector<ComplianceItem>& items);
@@ -151,9 +188,11 @@ std::string gate_confidence_note(double confidence);
 
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
-/// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict", and when
-/// specified "spec_field","limit_text","limit_is_typical","limit_si","compared_upper",
-/// "margin_upper","limit_factor","rule", plus "compared","margin" when detected and
+/// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict",
+/// "fit_p_value" and "fit_rejected" when the fit's p value is known, and when
+/// specified "spec_field","limit_text","limit_unit","limit_is_typical","limit_si",
+/// "compared_upper","margin_upper","limit_factor","rule", plus "compared","margin",
+/// "compared_low","margin_low","within_uncertainty" when detected and
 /// "limit_factor_text" when the printed value was scaled; "rule" also on
 /// an unspecified item that explains itself, e.g. the informational frame_rotation}]}. "verdict" is one of "pass",
 /// "marginal", "fail", "inconclusive", "not specified". Written by `check --format json` and into
@@ -169,8 +208,10 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
 /// biases, scale factor errors and temperature coefficients, and from its "matrix" (A) with
 /// "parameters" and "covariance" the non-orthogonality of its three axis pairs; with both triads,
 /// also the accelerometer-to-gyro frame_rotation. Intervals use the result's "confidence"
-/// (default 0.95). Channel names gx/gy/gz and ax/ay/az (or quantity
-/// angular_rate / specific_force with a trailing x/y/z) give sensor and axis. Throws Error
+/// (default 0.95). A fit channel's "p_value" (joint fits) becomes fit_p_value. The sensor is the
+/// channel's "quantity" (angular_rate / specific_force) when given, else its name's
+/// (classify_channel, channel_names.hpp: gx, gyro_x, wx, ax, acc_x, ...); the axis is the name's
+/// trailing x/y/z. Throws Error
 /// naming `file` on any other shape.
 std::vector<MeasuredParameter> measured_parameters_from_json(std::string_view json_text,
                                                              const std::string& file);
