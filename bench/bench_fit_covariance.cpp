@@ -1,7 +1,7 @@
 // Cost and error of the OAVAR covariance basis (lib/src/fit_covariance*.cpp): the lag sums by
 // closed-form correlations and discrete Gauss quadrature against the previous FFT path
-// (length 8 (m_a + m_b), kept as fit_covariance_fft.cpp). A plain program (not Google
-// Benchmark): it measures speed, memory and error together. Usage:
+// (length 8 (m_a + m_b), kept as tests/support/fit_covariance_fft.cpp). A plain program (not
+// Google Benchmark): it measures speed, memory and error together. Usage:
 //   bench_fit_covariance [RUNS=5]            markdown report on stdout
 //   bench_fit_covariance basis SAMPLES [old] one basis at octave factors (for /usr/bin/time -v)
 // Sections: (1) the layouts of bench_fit_accuracy (octave taus): build time new vs old and the
@@ -20,6 +20,7 @@
 
 #include "../lib/src/fit_covariance_lags.hpp"
 #include "../lib/src/fit_internal.hpp"
+#include "../tests/support/fit_covariance_fft.hpp"
 #include "sigmatau/taus.hpp"
 
 namespace {

@@ -28,8 +28,8 @@ struct AnalyzeArguments {
 /// Bytes the in-memory analysis needs per value (sample x channel) at its peak: the value as
 /// read (8, and 16 while a column's vector grows), the double-double phase (16) and the sweep
 /// copy (8) of every channel's series, and one channel's rate copy for the PSD (8 / channels).
-/// Measured: 5.5 GiB peak for a 10 GB ROS 1 bag of 1.6e8 values (36 bytes per value, the noise
-/// fit's covariance included).
+/// Measured: 5.5 GiB peak for a 10 GB ROS 1 bag of 1.6e8 values (36 bytes per value; measured
+/// while the fit's covariance still took FFT memory, so an upper bound).
 constexpr std::int64_t kAnalyzeBytesPerValue = 40;
 
 /// The channels analyze works on, chosen from the log's channel names: explicit --gyro / --accel

@@ -15,6 +15,7 @@
 
 #include "../../lib/src/fit_covariance_lags.hpp"  // internal interface under test
 #include "../../lib/src/fit_internal.hpp"
+#include "fit_covariance_fft.hpp"  // the previous FFT path, the reference
 #include "test_support.hpp"
 
 namespace {

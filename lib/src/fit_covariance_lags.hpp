@@ -63,17 +63,4 @@ struct DiscreteGaussRule {
 };
 DiscreteGaussRule discrete_gauss_rule(std::int64_t big_m, int n);
 
-/// Reference path (the previous implementation; tests and bench only): the lag correlations
-/// by an inverse FFT of length big_p (a power of two > 2 (m_a + m_b + 1)), c_t(u) for
-/// 0 <= u <= big_p / 2, aliased by the tail beyond big_p / 2 for B and GM.
-std::vector<std::vector<double>> fft_lag_correlations(std::int64_t ma, std::int64_t mb,
-                                                      double tau0_s, std::optional<double> gm_rate,
-                                                      std::int64_t big_p);
-/// Reference lag sums over the window |u| < big_p / 2 of fft_lag_correlations, big_p =
-/// lag_factor (m_a + m_b) rounded up to a power of two (at least 256): the previous basis
-/// used lag_factor 8.
-LagSums covariance_lag_sums_fft(std::int64_t ma, std::int64_t mb, std::int64_t n_phase_points,
-                                double tau0_s, std::optional<double> gm_rate,
-                                std::int64_t lag_factor);
-
 }  // namespace sigmatau::detail

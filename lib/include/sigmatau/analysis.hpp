@@ -122,9 +122,9 @@ struct BoundedAnalysisSource {
 /// at a time: 32 bytes per sample each on disk), the Welch PSD and the dynamic windows then
 /// stream from those files. Resident memory of these stages: the reader's buffers +
 /// storage.resident_bytes + one Welch accumulator per channel of the group (<= ~40 MiB each at
-/// the 2^20-sample segment cap), whatever the length. Not bounded here: the noise-term fit
-/// (fit.hpp), whose exact OAVAR covariance takes FFTs of 8 (m_a + m_b) points for the largest
-/// averaging factors, i.e. memory that grows with the log (~4 GiB at 2.7e7 samples).
+/// the 2^20-sample segment cap), whatever the length. The noise-term fit (fit.hpp) that follows
+/// works on the curves alone: its exact OAVAR covariance takes O(1) memory per pair of averaging
+/// factors, O(taus^2) in all, independent of the log's length.
 /// `input` carries path, bytes, crc32 and kind (channels, rate and timing are filled in here).
 /// Throws like LogReader and run_analysis, and Error for --gaps split/fill with more than one
 /// segment, or when a temporary file cannot be written.

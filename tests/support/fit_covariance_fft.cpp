@@ -1,5 +1,6 @@
-// Reference lag correlations by FFT (the covariance basis's previous path, kept for tests and
-// bench/bench_fit_covariance.cpp only; the basis uses fit_covariance_lagsum.cpp).
+// Reference lag correlations by FFT (the covariance basis's previous path, kept for
+// tests/test_fit_covariance.cpp and bench/bench_fit_covariance.cpp only; the library's basis
+// uses lib/src/fit_covariance_lagsum.cpp).
 //
 // Glossary: S Phi_ab(f) the spectral density of c_ab in u = L - (m_a - m_b) (fit_covariance.cpp),
 // f = p / P cycles per sample, s = sin(pi f). S Phi is real and even, so its P-point inverse
@@ -13,8 +14,8 @@
 #include <mutex>
 #include <numbers>
 
-#include "fftw_planner.hpp"
-#include "fit_covariance_lags.hpp"
+#include "../../lib/src/fftw_planner.hpp"  // the library's one FFTW planner lock
+#include "fit_covariance_fft.hpp"
 
 namespace sigmatau::detail {
 namespace {
