@@ -52,8 +52,7 @@ std::int64_t estimated_values(const LogArguments& log) {
   if (ec) return -1;
   if (is_bag_path(log.input)) return bytes / kBagBytesPerValue;
   if (log.binary.empty()) return bytes / 4;
-  const std::int64_t size = log.binary == "i16" ? 2 : (log.binary == "f64" ? 8 : 4);
-  return bytes / size;
+  return bytes / value_bytes(parse_binary_format(log.binary));
 }
 
 bool exact_needs_out_of_core(const LogArguments& log, std::int64_t memory_bytes) {

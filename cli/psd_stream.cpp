@@ -2,9 +2,8 @@
 
 #include "channel_units.hpp"
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <optional>
 #include <system_error>
 #include <utility>
@@ -13,45 +12,24 @@
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
+#include "sigmatau/psd.hpp"
 #include "sigmatau/rate_series.hpp"
 
 namespace sigmatau::cli {
 namespace {
 
-/// Stamps after which TimingReport::rate_hz is final: the nominal interval is the median of the
-/// first 100000 intervals (log_reader.hpp, TimingReport).
-constexpr std::int64_t kRateStamps = 100001;
+/// Stamps after which TimingReport::rate_hz is final (log_reader.hpp, TimingReport).
+constexpr std::int64_t kRateStamps = kRateMedianIntervals + 1;
 
 /// Read passes at most (the first, a count of rows, one more when a stated count was wrong):
 /// a file that keeps changing length between passes is an Error rather than a loop.
 constexpr int kMaxPasses = 3;
-
-/// The smallest sample count whose default segment length is the longest one
-/// default_segment_length gives (2^23 for its cap of 2^20): from there on the length no longer
-/// depends on the count. Found by bisection so that it follows psd.cpp's rule.
-std::int64_t saturation_samples() {
-  std::int64_t high = std::numeric_limits<std::int64_t>::max() / 4;
-  const std::int64_t longest = default_segment_length(high);
-  std::int64_t low = 0;  // default_segment_length(low) < longest, or low = 0
-  while (high - low > 1) {
-    const std::int64_t mid = low + (high - low) / 2;
-    (default_segment_length(mid) == longest ? high : low) = mid;
-  }
-  return high;
-}
 
 /// Whether the input can be read a second time (a file or a rosbag2 folder, not a pipe).
 bool rereadable(const std::string& path) {
   if (path == "-") return false;
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec) || std::filesystem::is_directory(path, ec);
-}
-
-bool gzip_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char magic[2] = {0, 0};
-  in.read(reinterpret_cast<char*>(magic), 2);
-  return in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
 }
 
 /// Rows the input says it holds before it is read, -1 when it does not: a raw binary file
@@ -65,14 +43,11 @@ std::int64_t stated_rows(const LogOptions& options, const TimingReport& opened) 
   }
   if (options.binary == BinaryFormat::none || !rereadable(options.path)) return -1;
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(options.path, ec) || gzip_file(options.path)) return -1;
+  if (!std::filesystem::is_regular_file(options.path, ec) || is_gzip_file(options.path)) return -1;
   const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(options.path, ec));
   if (ec) return -1;
-  const std::int64_t value_bytes = options.binary == BinaryFormat::i16   ? 2
-                                   : options.binary == BinaryFormat::f64 ? 8
-                                                                         : 4;
   return std::max<std::int64_t>(0, bytes - options.skip_bytes) /
-         (value_bytes * options.binary_channels);
+         (value_bytes(options.binary) * options.binary_channels);
 }
 
 /// Rows of the input, read through once (a counting pass).
@@ -184,7 +159,7 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     }
   }
   const bool rate_from_time = !args.rate_hz && reader.has_time();
-  const std::int64_t saturated = saturation_samples();
+  const std::int64_t saturated = kDefaultSegmentSaturation;
   const std::int64_t held_limit =
       std::max<std::int64_t>(1, memory_bytes / static_cast<std::int64_t>(8 * channels));
 

@@ -581,6 +581,39 @@ TEST_CASE("parse_time_unit and parse_binary_format accept their words only") {
                        Error);
 }
 
+TEST_CASE("value_bytes and is_gzip_file give the sizes and the magic the readers use") {
+  CHECK(value_bytes(BinaryFormat::i16) == 2);
+  CHECK(value_bytes(BinaryFormat::i32) == 4);
+  CHECK(value_bytes(BinaryFormat::f32) == 4);
+  CHECK(value_bytes(BinaryFormat::f64) == 8);
+  CHECK_THROWS_AS(value_bytes(BinaryFormat::none), Error);
+  CHECK(is_gzip_file(logs("header.csv.gz")));
+  CHECK_FALSE(is_gzip_file(logs("header.csv")));
+  CHECK_FALSE(is_gzip_file(logs("no_such_file.csv")));
+  TempFile one_byte(std::string(1, '\x1f'), ".gz");
+  CHECK_FALSE(is_gzip_file(one_byte.path()));
+}
+
+TEST_CASE("the rate is the median of the first kRateMedianIntervals intervals only") {
+  // kRateMedianIntervals intervals of 1 ms, then more of 2 ms than of 1 ms: the median of the
+  // whole log would be 2 ms, the report keeps the first window's 1 ms.
+  std::string text = "t_ns,x\n";
+  std::int64_t t_ns = 0;
+  for (std::int64_t k = 0; k <= 3 * kRateMedianIntervals; ++k) {
+    text += std::to_string(t_ns) + ",0\n";
+    t_ns += k < kRateMedianIntervals ? 1000000 : 2000000;
+  }
+  TempFile f(text, ".csv");
+  LogOptions o = text_options(f.path());
+  o.time_column = "t_ns";
+  o.time_unit = TimeUnit::ns;
+  LogReader reader(o);
+  SampleBlock block;
+  while (reader.read_block(block)) {
+  }
+  CHECK(reader.timing().rate_hz == 1000.0);  // 1e6 ns / 1e9: exactly the double 1e-3
+}
+
 TEST_CASE("a ParseError prints FILE:LINE:COLUMN: message") {
   try {
     read_log(text_options(bad("non_numeric.csv")));

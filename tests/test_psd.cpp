@@ -178,6 +178,13 @@ TEST_CASE("log binning keeps the level and adds up the EDF") {
   }
 }
 
+TEST_CASE("the default segment length saturates at kDefaultSegmentSaturation samples") {
+  CHECK(default_segment_length(kDefaultSegmentSaturation) == kMaxDefaultSegmentLength);
+  CHECK(default_segment_length(kDefaultSegmentSaturation - 1) == kMaxDefaultSegmentLength / 2);
+  CHECK(default_segment_length(std::int64_t{1} << 40) == kMaxDefaultSegmentLength);
+  CHECK(default_segment_length(0) == 16);
+}
+
 TEST_CASE("bad PSD arguments are clear errors") {
   const auto x = white_noise(100, 1.0, 1);
   WelchOptions options;

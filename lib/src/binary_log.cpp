@@ -11,21 +11,7 @@
 namespace sigmatau::detail {
 namespace {
 
-std::size_t value_size(BinaryFormat f) {
-  switch (f) {
-    case BinaryFormat::i16:
-      return 2;
-    case BinaryFormat::i32:
-      return 4;
-    case BinaryFormat::f32:
-      return 4;
-    case BinaryFormat::f64:
-      return 8;
-    case BinaryFormat::none:
-      break;
-  }
-  throw Error("binary log: no binary format given");
-}
+std::size_t value_size(BinaryFormat f) { return static_cast<std::size_t>(value_bytes(f)); }
 
 inline std::uint16_t bswap(std::uint16_t v) { return __builtin_bswap16(v); }
 inline std::uint32_t bswap(std::uint32_t v) { return __builtin_bswap32(v); }

@@ -8,9 +8,11 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <vector>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/log_reader.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -139,3 +141,14 @@ std::size_t ByteSource::inflate_read(char* dst, std::size_t n) {
 }
 
 }  // namespace sigmatau::detail
+
+namespace sigmatau {
+
+bool is_gzip_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[2] = {0, 0};
+  in.read(reinterpret_cast<char*>(magic), 2);
+  return in.gcount() == 2 && magic[0] == detail::kGzipMagic0 && magic[1] == detail::kGzipMagic1;
+}
+
+}  // namespace sigmatau

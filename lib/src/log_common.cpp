@@ -14,9 +14,10 @@
 namespace sigmatau::detail {
 namespace {
 
-/// Intervals kept for the exact median: 100000 x 24 bytes = 2.4 MB at most; at 100 Hz that is
-/// the first 1000 s of the log, plenty to fix the nominal rate of a clocked sensor.
-constexpr std::size_t kMedianWindow = 100000;
+/// Intervals kept for the exact median (kRateMedianIntervals, public: the CLI knows from it when
+/// the rate is final): 100000 x 24 bytes = 2.4 MB at most; at 100 Hz that is the first 1000 s of
+/// the log, plenty to fix the nominal rate of a clocked sensor.
+constexpr auto kMedianWindow = static_cast<std::size_t>(kRateMedianIntervals);
 /// An interval of 2 nominal periods is one missing sample; 1.5 is halfway between 1 and 2, so
 /// jitter of up to +-50 % of a period is not mistaken for a gap.
 constexpr double kGapFactor = 1.5;

@@ -38,6 +38,21 @@ BinaryFormat parse_binary_format(std::string_view text) {
               "\" (expected i16, i32, f32 or f64)");
 }
 
+std::int64_t value_bytes(BinaryFormat format) {
+  switch (format) {
+    case BinaryFormat::i16:
+      return 2;
+    case BinaryFormat::i32:
+    case BinaryFormat::f32:
+      return 4;
+    case BinaryFormat::f64:
+      return 8;
+    case BinaryFormat::none:
+      break;
+  }
+  throw Error("binary log: no binary format given");
+}
+
 TruncatedPolicy parse_truncated_policy(std::string_view text) {
   if (text == "error") return TruncatedPolicy::error;
   if (text == "use") return TruncatedPolicy::use;

@@ -123,7 +123,9 @@ std::string_view to_string(Detrend detrend) {
 
 std::int64_t default_segment_length(std::int64_t samples) {
   std::int64_t length = 16;
-  while (length * 2 <= samples / 8 && length * 2 <= (std::int64_t{1} << 20)) length *= 2;
+  while (length * 2 <= samples / kDefaultSegmentDivisor && length * 2 <= kMaxDefaultSegmentLength) {
+    length *= 2;
+  }
   return length;
 }
 

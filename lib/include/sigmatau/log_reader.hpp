@@ -82,6 +82,9 @@ TruncatedPolicy parse_truncated_policy(std::string_view text);
 /// "fill"; "skip" | "error". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
 BinaryFormat parse_binary_format(std::string_view text);
+/// Bytes of one value of a raw binary log: 2 (i16), 4 (i32, f32), 8 (f64). Throws Error for
+/// BinaryFormat::none.
+std::int64_t value_bytes(BinaryFormat format);
 GapPolicy parse_gap_policy(std::string_view text);
 NonFinitePolicy parse_nonfinite_policy(std::string_view text);
 /// "header" | "receive". Throws Error otherwise.
@@ -149,8 +152,18 @@ struct Gap {
   double length_s = 0;    ///< interval [s]
 };
 
+/// Whether the file at `path` starts with the gzip magic bytes 1f 8b, i.e. whether LogReader
+/// inflates it; false when it cannot be opened or holds fewer than 2 bytes.
+bool is_gzip_file(const std::string& path);
+
+/// Intervals whose exact median is TimingReport's nominal interval: the first this many (the
+/// whole log when it is shorter). TimingReport::rate_hz is final once kRateMedianIntervals + 1
+/// stamps have been read.
+inline constexpr std::int64_t kRateMedianIntervals = 100000;
+
 /// Statistics of the time column, accumulated while reading. The nominal interval is the exact
-/// median of the first 100000 intervals (bounded memory; the whole log when it is shorter).
+/// median of the first kRateMedianIntervals intervals (bounded memory; the whole log when it is
+/// shorter).
 /// Intervals are differences of the stamps as written (integer parts subtracted exactly), so
 /// nanosecond epoch stamps keep their resolution even though t_s itself is a double.
 struct TimingReport {

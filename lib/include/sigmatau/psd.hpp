@@ -47,8 +47,18 @@ struct PsdCurve {
   std::vector<double> edf;            ///< equivalent degrees of freedom of each value
 };
 
+/// Longest segment default_segment_length chooses [samples].
+inline constexpr std::int64_t kMaxDefaultSegmentLength = std::int64_t{1} << 20;
+/// default_segment_length takes the largest power of two not above samples / this.
+inline constexpr std::int64_t kDefaultSegmentDivisor = 8;
+/// The smallest sample count whose default segment length is kMaxDefaultSegmentLength (2^23):
+/// from there on the default no longer depends on the count.
+inline constexpr std::int64_t kDefaultSegmentSaturation =
+    kDefaultSegmentDivisor * kMaxDefaultSegmentLength;
+
 /// Segment length used when WelchOptions::segment_length is 0: the largest power of two not
-/// above samples / 8 (so at least ~15 segments at 50 % overlap), clamped to [16, 2^20].
+/// above samples / kDefaultSegmentDivisor (so at least ~15 segments at 50 % overlap), clamped
+/// to [16, kMaxDefaultSegmentLength].
 std::int64_t default_segment_length(std::int64_t samples);
 
 /// Streaming Welch accumulator: feed samples in blocks of any size; result() is available at any
