@@ -465,12 +465,4 @@ std::filesystem::path find_data_sheet(std::string_view name_or_path,
               "; `sigmatau specs list` shows the names)");
 }
 
-std::string format_printed(const PrintedValue& value, const Dimension& dimension) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value.text << " (= " << (value.plus_minus ? "\u00b1" : "") << value.value_si << " "
-      << si_unit_string(dimension) << ")";
-  return out.str();
-}
-
 }  // namespace sigmatau

@@ -155,7 +155,4 @@ std::vector<std::filesystem::path> list_data_sheets(const std::filesystem::path&
 std::filesystem::path find_data_sheet(std::string_view name_or_path,
                                       const std::filesystem::path& directory);
 
-/// The printed value as "text (= value_si SI-unit)", for display.
-std::string format_printed(const PrintedValue& value, const Dimension& dimension);
-
 }  // namespace sigmatau
