@@ -15,6 +15,7 @@
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/log_reader.hpp"
+#include "sigmatau/psd.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;

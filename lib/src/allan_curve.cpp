@@ -106,17 +106,10 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const std::vector<PhaseSeries>& channels, const std::vector<Statistic>& statistics,
     const TauSpec& taus, double confidence_level, unsigned threads, EdfModel edf_model) {
-  std::vector<std::vector<AllanCurve>> result(channels.size(),
-                                              std::vector<AllanCurve>(statistics.size()));
-  // Work items are (channel, statistic) pairs so two channels still keep two cores busy.
-  detail::for_each_item_parallel(
-      channels.size() * statistics.size(), threads, [&](std::size_t i) {
-        const std::size_t c = i / statistics.size();
-        const std::size_t s = i % statistics.size();
-        result[c][s] =
-            compute_allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model);
+  return detail::curves_per_channel_and_statistic(
+      channels.size(), statistics.size(), threads, [&](std::size_t c, std::size_t s) {
+        return compute_allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model);
       });
-  return result;
 }
 
 }  // namespace sigmatau

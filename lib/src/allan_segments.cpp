@@ -1,4 +1,4 @@
-// Allan-family curves and Welch PSD pooled over the contiguous segments of a split log.
+// Allan-family curves pooled over the contiguous segments of a split log.
 //
 // Glossary (see allan_segments.hpp for the pooling rules):
 //   k      segment index; N_k its phase points, n_k its term count at m
@@ -210,50 +210,11 @@ std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
     const std::vector<std::vector<PhaseSeries>>& channels,
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
     unsigned threads, EdfModel edf_model) {
-  std::vector<std::vector<AllanCurve>> result(channels.size(),
-                                              std::vector<AllanCurve>(statistics.size()));
-  detail::for_each_item_parallel(
-      channels.size() * statistics.size(), threads, [&](std::size_t i) {
-        const std::size_t c = i / statistics.size();
-        const std::size_t s = i % statistics.size();
-        result[c][s] =
-            compute_segmented_allan_curve(channels[c], statistics[s], taus, confidence_level,
-                                          edf_model);
+  return detail::curves_per_channel_and_statistic(
+      channels.size(), statistics.size(), threads, [&](std::size_t c, std::size_t s) {
+        return compute_segmented_allan_curve(channels[c], statistics[s], taus, confidence_level,
+                                             edf_model);
       });
-  return result;
-}
-
-PsdCurve welch_psd_stretches(std::span<const std::span<const double>> stretches, double rate_hz,
-                             const WelchOptions& options) {
-  std::size_t longest_size = 0;
-  for (const auto& s : stretches) longest_size = std::max(longest_size, s.size());
-  WelchOptions fixed = options;
-  if (fixed.segment_length == 0) {
-    fixed.segment_length = default_segment_length(static_cast<std::int64_t>(longest_size));
-  }
-  PsdCurve combined;
-  for (const auto& s : stretches) {
-    if (static_cast<std::int64_t>(s.size()) < fixed.segment_length) continue;
-    const PsdCurve part = welch_psd(s, rate_hz, fixed);
-    if (combined.segments == 0) {
-      combined = part;
-      for (double& v : combined.psd) v *= static_cast<double>(part.segments);
-      continue;
-    }
-    SIGMATAU_ASSERT(part.psd.size() == combined.psd.size(), "Welch grids differ");
-    for (std::size_t j = 0; j < part.psd.size(); ++j) {
-      combined.psd[j] += static_cast<double>(part.segments) * part.psd[j];
-      combined.edf[j] += part.edf[j];
-    }
-    combined.segments += part.segments;
-  }
-  if (combined.segments == 0) {
-    throw Error("no contiguous stretch holds one PSD segment of " +
-                std::to_string(fixed.segment_length) + " samples (the longest has " +
-                std::to_string(longest_size) + ")");
-  }
-  for (double& v : combined.psd) v /= static_cast<double>(combined.segments);
-  return combined;
 }
 
 }  // namespace sigmatau

@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <type_traits>
+#include <vector>
 
 namespace sigmatau::detail {
 
@@ -12,5 +14,20 @@ namespace sigmatau::detail {
 /// rethrown.
 void for_each_item_parallel(std::size_t items, unsigned threads,
                             const std::function<void(std::size_t)>& work);
+
+/// result[c][s] = curve(c, s) for every channel c < channels and statistic s < statistics.
+/// The work items are the (channel, statistic) pairs, spread by for_each_item_parallel over
+/// `threads`, so that a few channels with several statistics still keep every core busy.
+/// Throws like for_each_item_parallel.
+template <class Curve>
+auto curves_per_channel_and_statistic(std::size_t channels, std::size_t statistics,
+                                      unsigned threads, Curve&& curve) {
+  using Result = std::invoke_result_t<Curve&, std::size_t, std::size_t>;
+  std::vector<std::vector<Result>> result(channels, std::vector<Result>(statistics));
+  for_each_item_parallel(channels * statistics, threads, [&](std::size_t i) {
+    result[i / statistics][i % statistics] = curve(i / statistics, i % statistics);
+  });
+  return result;
+}
 
 }  // namespace sigmatau::detail

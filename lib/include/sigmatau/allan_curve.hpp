@@ -49,8 +49,9 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level,
                                EdfModel edf_model = EdfModel::greenhall);
 
-/// Several statistics for several channels, channels spread over `threads` worker threads
-/// (0: one per hardware core). Result: [channel][statistic], in the order given.
+/// Several statistics for several channels; (channel, statistic) pairs are spread over
+/// `threads` worker threads (0: one per hardware core). Result: [channel][statistic], in the
+/// order given.
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const std::vector<PhaseSeries>& channels, const std::vector<Statistic>& statistics,
     const TauSpec& taus, double confidence_level, unsigned threads = 0,

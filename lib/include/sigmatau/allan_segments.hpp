@@ -1,9 +1,10 @@
 #pragma once
 /// \file allan_segments.hpp
-/// Allan-family curves and the Welch PSD of a log broken into contiguous segments (a logger
+/// Allan-family curves of a log broken into contiguous segments (a logger
 /// restart, a dropped stretch: GapPolicy::split). Every segment becomes its own PhaseSeries, so
 /// no difference spans a gap, and the segments' results are pooled through the public
-/// estimators (allan.hpp, confidence.hpp); no estimator is re-implemented here.
+/// estimators (allan.hpp, confidence.hpp); no estimator is re-implemented here. The Welch PSD
+/// over such segments is welch_psd_stretches (psd.hpp).
 ///
 /// Pooling at averaging factor m (segment k: n_k terms, variance v_k = dev_k^2):
 ///  - ADEV, OADEV, MDEV, TDEV, HDEV, OHDEV: each variance is S_k / (c n_k), where S_k is the
@@ -33,7 +34,6 @@
 #include "sigmatau/allan.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/phase_series.hpp"
-#include "sigmatau/psd.hpp"
 #include "sigmatau/taus.hpp"
 
 namespace sigmatau {
@@ -84,14 +84,5 @@ std::vector<std::vector<AllanCurve>> compute_segmented_allan_curves(
     const std::vector<std::vector<PhaseSeries>>& channels,
     const std::vector<Statistic>& statistics, const TauSpec& taus, double confidence_level,
     unsigned threads = 0, EdfModel edf_model = EdfModel::greenhall);
-
-/// Welch PSD over several contiguous stretches of one channel (rate samples at rate_hz): every
-/// stretch at least one Welch segment long is averaged on its own, and the stretches' PSDs are
-/// combined weighted by their number of Welch segments, which is the Welch average over every
-/// window that fits inside a stretch (no window spans a gap); EDFs add. The segment length is
-/// options.segment_length, or default_segment_length of the longest stretch when 0. Throws Error
-/// when no stretch holds one Welch segment, and like welch_psd otherwise.
-PsdCurve welch_psd_stretches(std::span<const std::span<const double>> stretches, double rate_hz,
-                             const WelchOptions& options);
 
 }  // namespace sigmatau

@@ -86,6 +86,16 @@ class WelchAccumulator {
 /// Welch PSD of a whole series (convenience over WelchAccumulator).
 PsdCurve welch_psd(std::span<const double> samples, double rate_hz, const WelchOptions& options);
 
+/// Welch PSD over several contiguous stretches of one channel (rate samples at rate_hz [Hz],
+/// e.g. the segments of a log read with GapPolicy::split): every stretch at least one Welch
+/// segment long is averaged on its own, and the stretches' PSDs are combined weighted by their
+/// number of Welch segments, which is the Welch average over every window that fits inside a
+/// stretch (no window spans a gap); EDFs add. The segment length is options.segment_length, or
+/// default_segment_length of the longest stretch when 0. Throws Error when no stretch holds one
+/// Welch segment, and like welch_psd otherwise.
+PsdCurve welch_psd_stretches(std::span<const std::span<const double>> stretches, double rate_hz,
+                             const WelchOptions& options);
+
 /// Averages a PSD into `per_decade` logarithmically spaced bins (for plots); each output value
 /// is the mean of the input bins it covers, its frequency their mean and its EDF their sum
 /// (corrected for window correlation between neighbouring bins). DC is dropped.
