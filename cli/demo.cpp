@@ -18,6 +18,7 @@
 #include "sigmatau/resources.hpp"
 #include "sigmatau/simulate.hpp"
 #include "sigmatau/simulate_spec.hpp"
+#include "sigmatau/units.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -150,7 +151,7 @@ void run_demo(const DemoArguments& args) {
   config.samples = static_cast<std::int64_t>(std::llround(args.hours * 3600 * args.rate_hz));
   config.seed = args.seed;
   StaticPose pose;
-  pose.latitude_rad = 45.0 * 3.14159265358979323846 / 180.0;
+  pose.latitude_rad = 45.0 * kRadiansPerDegree;
   config.truth = static_truth(pose);
   config.threads = args.chain.threads == 0 ? 2 : args.chain.threads;
   Simulator simulator(config);

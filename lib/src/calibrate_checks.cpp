@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <numbers>
 #include <vector>
 
 #include "calibrate_internal.hpp"
@@ -21,8 +20,6 @@
 
 namespace sigmatau {
 namespace {
-
-const double kDegPerRad = 180 / std::numbers::pi;
 
 /// Histogram of log10 of the magnitude [m/s^2]: bins of 1e-3 over [1e-8, 1e8]; smaller values
 /// (a zero row) fall into the first bin, larger into the last.
@@ -118,7 +115,7 @@ void check_gyro_unit(const CalibrationResult& r, const std::string& unit_given,
       "read as radians turn every rotation 57 times too far)? Otherwise the gyroscope "
       "saturated during the rotations, or the sample rate is wrong (--time-column, "
       "--rate)",
-      g.residual_rms, g.residual_rms * kDegPerRad, chi2_dof, kMaxGyroRotationMisfit,
+      g.residual_rms, g.residual_rms * kDegreesPerRadian, chi2_dof, kMaxGyroRotationMisfit,
       unit_given.c_str(), unit_given.c_str());
   throw Error(prefixed(path, text));
 }
@@ -172,8 +169,9 @@ void check_gyro_rotation_angles(const CalibrationLog& log, double rate_hz, bool 
                   "misalignment errors, a few %% of the angle. Are the gyro columns in %s "
                   "(degrees read as radians turn every rotation 57 times too far)? Otherwise the "
                   "sample rate is wrong (--time-column, --rate) or the gyroscope saturated",
-                  unit_given.c_str(), unit_given.c_str(), kMaxRawGyroMisfit * kDegPerRad, missed,
-                  tested, misses[misses.size() / 2] * kDegPerRad, unit_given.c_str());
+                  unit_given.c_str(), unit_given.c_str(), kMaxRawGyroMisfit * kDegreesPerRadian,
+                  missed, tested, misses[misses.size() / 2] * kDegreesPerRadian,
+                  unit_given.c_str());
     throw Error(prefixed(path, text));
   }
   if (tested < 3 || 2 * short_paths < tested) return;

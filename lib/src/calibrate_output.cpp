@@ -3,20 +3,21 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <sstream>
 
 #include "sigmatau/calibrate.hpp"
 #include "sigmatau/calibrate_checks.hpp"
+#include "sigmatau/units.hpp"
 
 namespace sigmatau {
 namespace {
 
 using json = nlohmann::json;
 
-/// Data-sheet units: deg/s per rad/s, mg per m/s^2 (1 g = 9.80665 m/s^2 as data sheets mean it).
-const double kDegPerRad = 180 / std::numbers::pi;
-constexpr double kMgPerMps2 = 1000 / 9.80665;
+/// Data-sheet units: deg/s per rad/s, mg per m/s^2 (1 g = standard gravity, as data sheets mean
+/// it).
+constexpr double kDegPerRad = kDegreesPerRadian;
+constexpr double kMgPerMps2 = 1000 / kStandardGravity;
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 

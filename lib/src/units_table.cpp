@@ -10,7 +10,7 @@ namespace sigmatau {
 namespace units_detail {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;  // [rad], exact definition of the degree
+constexpr double kDegree = kRadiansPerDegree;       // [rad], exact definition of the degree
 constexpr double kMinute = 60;                      // [s]
 constexpr double kHour = 3600;                      // [s]
 constexpr double kFoot = 0.3048;                    // [m], international foot (1959)

@@ -35,6 +35,7 @@
 /// Micro can be written u, µ (U+00B5, micro sign) or μ (U+03BC, Greek mu). Exact symbols win
 /// over prefixed ones: "m" is metre, "min" minute, "mg" milli-gee, "h" hour, "ms" millisecond.
 
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,6 +47,11 @@ namespace sigmatau {
 /// Standard gravity gn [m/s^2], the conventional value adopted by the 3rd CGPM (1901) and used
 /// by IMU data sheets for "g", "mg", "µg". Not the local gravity at any site.
 inline constexpr double kStandardGravity = 9.80665;
+
+/// One degree [rad]: pi / 180, exact by definition; the factor of "deg" in parse_unit.
+inline constexpr double kRadiansPerDegree = std::numbers::pi / 180;
+/// Degrees in one radian (180 / pi), to write an angle held in rad in degrees.
+inline constexpr double kDegreesPerRadian = 180 / std::numbers::pi;
 
 /// Physical dimension as exponents of angle, length, time, temperature and counts (each in
 /// halves, so rad/s/sqrt(Hz) = rad/sqrt(s) is angle2 = 2, time2 = -1).
