@@ -38,13 +38,6 @@ AllanCurve compute_allan_curve_bounded(const PhaseSeries& series, Statistic stat
 NoiseIdentification identify_noise_bounded(const PhaseSeries& series, Statistic statistic,
                                            std::int64_t m, const PhaseStorage& storage);
 
-/// PhaseStorage with spill = true and the other fields at their defaults.
-inline PhaseStorage spilled_storage() {
-  PhaseStorage storage;
-  storage.spill = true;
-  return storage;
-}
-
 struct OutOfCoreSettings {
   PhaseStorage storage = spilled_storage();  ///< where the phase goes (spilled for out of core)
   unsigned threads = 0;  ///< channels computed at a time (0: one per core)

@@ -108,11 +108,7 @@ struct BoundedAnalysisSource {
   std::function<void(const TimingReport&)> on_read;
   /// Where the values and the phase go: temporary files in storage.directory ($TMPDIR, /tmp),
   /// at most about storage.resident_bytes of them mapped at once.
-  PhaseStorage storage = [] {
-    PhaseStorage s;
-    s.spill = true;
-    return s;
-  }();
+  PhaseStorage storage = spilled_storage();
 };
 
 /// run_analysis on a log that need not fit in memory, with the same results.json and filter

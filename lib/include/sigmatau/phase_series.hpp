@@ -52,6 +52,13 @@ struct PhaseStorage {
   std::int64_t resident_bytes = std::int64_t{256} << 20;
 };
 
+/// PhaseStorage with spill = true and the other fields at their defaults.
+inline PhaseStorage spilled_storage() {
+  PhaseStorage storage;
+  storage.spill = true;
+  return storage;
+}
+
 /// A channel in phase form, double-double (see the file comment). Copies share the (immutable)
 /// storage.
 class PhaseSeries {
