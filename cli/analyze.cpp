@@ -11,7 +11,6 @@
 #include "memory_budget.hpp"
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
-#include "sigmatau/output_file.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {

@@ -9,9 +9,9 @@
 #include "sigmatau/calibrate.hpp"
 #include "sigmatau/calibrate_checks.hpp"
 #include "sigmatau/calibrate_log.hpp"
+#include "sigmatau/earth.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
-#include "sigmatau/simulate.hpp"
 #include "sigmatau/units.hpp"
 #include "verbs.hpp"
 

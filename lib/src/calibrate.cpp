@@ -18,7 +18,6 @@
 
 #include "calibrate_internal.hpp"
 #include "sigmatau/error.hpp"
-#include "sigmatau/simulate.hpp"
 
 namespace sigmatau {
 namespace {

@@ -26,8 +26,8 @@
 #include <cmath>
 
 #include "calibrate_internal.hpp"
+#include "sigmatau/earth.hpp"
 #include "sigmatau/error.hpp"
-#include "sigmatau/simulate.hpp"
 
 namespace sigmatau::detail {
 namespace {

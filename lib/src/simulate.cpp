@@ -63,15 +63,6 @@ std::uint64_t key_of(const Channel& c, NoiseTerm t) { return c.keys[static_cast<
 
 }  // namespace
 
-double normal_gravity(double latitude_rad) {
-  // WGS-84 Somigliana: gamma_e (1 + k sin^2) / sqrt(1 - e^2 sin^2).
-  constexpr double kGammaEquator = 9.7803253359;
-  constexpr double kSomiglianaK = 0.00193185265241;
-  constexpr double kE2 = 0.00669437999013;
-  const double s2 = std::pow(std::sin(latitude_rad), 2);
-  return kGammaEquator * (1 + kSomiglianaK * s2) / std::sqrt(1 - kE2 * s2);
-}
-
 Truth static_truth(const StaticPose& p) {
   const double cr = std::cos(p.roll_rad), sr = std::sin(p.roll_rad);
   const double cp = std::cos(p.pitch_rad), sp = std::sin(p.pitch_rad);
@@ -81,8 +72,7 @@ Truth static_truth(const StaticPose& p) {
   ry << cp, 0, sp, 0, 1, 0, -sp, 0, cp;
   rz << cy, -sy, 0, sy, cy, 0, 0, 0, 1;
   const Eigen::Matrix3d body_to_ned = rz * ry * rx;
-  const Eigen::Vector3d omega_n(kEarthRate * std::cos(p.latitude_rad), 0,
-                                -kEarthRate * std::sin(p.latitude_rad));
+  const Eigen::Vector3d omega_n = earth_rate_ned(p.latitude_rad);
   const Eigen::Vector3d f_n(0, 0, -normal_gravity(p.latitude_rad));
   return {body_to_ned.transpose() * omega_n, body_to_ned.transpose() * f_n};
 }

@@ -65,7 +65,7 @@ namespace detail {
 ScheduleTruth::ScheduleTruth(const Schedule& schedule) {
   validate_schedule(schedule);
   const double lat = schedule.latitude_rad;
-  earth_rate_n_ = Eigen::Vector3d(kEarthRate * std::cos(lat), 0, -kEarthRate * std::sin(lat));
+  earth_rate_n_ = earth_rate_ned(lat);
   specific_force_n_ = Eigen::Vector3d(0, 0, -normal_gravity(lat));
   double t = 0;
   const auto& ps = schedule.positions;

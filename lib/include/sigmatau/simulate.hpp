@@ -52,17 +52,13 @@
 #include <string_view>
 #include <vector>
 
+#include "sigmatau/earth.hpp"  // kEarthRate, earth_rate_ned, normal_gravity: the truth at rest
 #include "sigmatau/noise_model.hpp"
 
 namespace sigmatau {
 
-/// Earth rotation rate [rad/s] (WGS-84).
-inline constexpr double kEarthRate = 7.292115e-5;
 /// Random streams are generated in sub-blocks of this many samples (see file comment).
 inline constexpr std::int64_t kRandomSubBlock = 4096;
-
-/// WGS-84 normal gravity on the ellipsoid at geodetic latitude [rad] (Somigliana), [m/s^2].
-double normal_gravity(double latitude_rad);
 
 /// A static sensor: attitude of the sensor (body) frame relative to local north-east-down,
 /// as roll, pitch, yaw (z-y-x Euler angles) [rad], and the latitude [rad].
