@@ -1,4 +1,5 @@
-// Internal: number parsing, column selection and time-stamp statistics for the log readers.
+// Internal: number parsing, column selection and time-stamp statistics for the log readers
+// (the gap policies' parsing and fill_gaps: log_gaps.cpp).
 //
 // Glossary: dt = interval between consecutive time stamps [s]; nominal = median dt of the first
 // kMedianWindow intervals; a gap is dt > kGapFactor * nominal.
@@ -18,9 +19,6 @@ namespace {
 /// the rate is final): 100000 x 24 bytes = 2.4 MB at most; at 100 Hz that is the first 1000 s of
 /// the log, plenty to fix the nominal rate of a clocked sensor.
 constexpr auto kMedianWindow = static_cast<std::size_t>(kRateMedianIntervals);
-/// An interval of 2 nominal periods is one missing sample; 1.5 is halfway between 1 and 2, so
-/// jitter of up to +-50 % of a period is not mistaken for a gap.
-constexpr double kGapFactor = 1.5;
 /// An interval under this fraction of the nominal one is short. Together with the gaps it tells
 /// jittered stamps (as many short intervals as long ones: the samples are all there) from lost
 /// samples (no short intervals).
@@ -46,7 +44,15 @@ bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
 }
 
-/// A duration for a message: "40 ms", "2.5 s", "-3 us" (4 significant digits).
+std::string format_seconds_ratio(double r) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g", r);
+  return text;
+}
+double rate_hz_of(double nominal_s) { return nominal_s > 0 ? 1.0 / nominal_s : 0.0; }
+
+}  // namespace
+
 std::string format_seconds(double s) {
   const double a = std::abs(s);
   const char* unit = "s";
@@ -65,14 +71,6 @@ std::string format_seconds(double s) {
   std::snprintf(text, sizeof text, "%.4g %s", v, unit);
   return text;
 }
-std::string format_seconds_ratio(double r) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.3g", r);
-  return text;
-}
-double rate_hz_of(double nominal_s) { return nominal_s > 0 ? 1.0 / nominal_s : 0.0; }
-
-}  // namespace
 
 std::string_view trim_field(std::string_view f) {
   while (!f.empty() && is_blank(f.front())) f.remove_prefix(1);
@@ -463,75 +461,10 @@ TimingReport TimingAccumulator::report() const {
 
 namespace sigmatau {
 
-GapPolicy parse_gap_policy(std::string_view text) {
-  if (text == "report") return GapPolicy::report;
-  if (text == "error") return GapPolicy::error;
-  if (text == "split") return GapPolicy::split;
-  if (text == "fill") return GapPolicy::fill;
-  throw Error("unknown gap policy \"" + std::string(text) +
-              "\" (expected error, split, fill or report)");
-}
-
 NonFinitePolicy parse_nonfinite_policy(std::string_view text) {
   if (text == "error") return NonFinitePolicy::error;
   if (text == "skip") return NonFinitePolicy::skip_row;
   throw Error("unknown non-finite policy \"" + std::string(text) + "\" (expected skip or error)");
-}
-
-std::int64_t fill_gaps(Log& log) {
-  using detail::format_seconds;
-  using detail::kGapFactor;
-  const std::string file = log.path == "-" ? "<stdin>" : log.path;
-  if (log.t_s.empty()) throw Error(file + ": --gaps fill needs a time column");
-  if (!(log.timing.rate_hz > 0)) {
-    throw Error(file + ": --gaps fill needs a sample rate measured from the time column");
-  }
-  const double nominal_s = 1.0 / log.timing.rate_hz;
-  const std::size_t n = log.t_s.size();
-  // First pass: count (and check) what would be inserted, so that nothing changes on error.
-  std::int64_t missing = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    const double dt = log.t_s[i] - log.t_s[i - 1];
-    if (!(dt > 0)) {
-      throw ParseError(file, 0, 0,
-                       "time stamp at row " + std::to_string(i) +
-                           " does not increase; --gaps fill cannot interpolate backwards "
-                           "(use --gaps split)");
-    }
-    if (dt > kGapFactor * nominal_s) {
-      const double spans = std::round(dt / nominal_s);  // intervals the gap spans
-      // Compared in double before any integer conversion: absurd stamps can make a gap of more
-      // than 2^63 intervals, where llround overflowed (found by fuzz_text_log).
-      if (!(static_cast<double>(missing) + spans - 1 <= static_cast<double>(n))) {
-        throw Error(file + ": --gaps fill would more than double the log (a gap of " +
-                    format_seconds(dt) + " before row " + std::to_string(i) +
-                    "); use --gaps split");
-      }
-      missing += static_cast<std::int64_t>(spans) - 1;
-    }
-  }
-  if (missing == 0) return 0;
-  const auto grow = [&](std::vector<double>& x) {
-    std::vector<double> out;
-    out.reserve(n + static_cast<std::size_t>(missing));
-    out.push_back(x[0]);
-    for (std::size_t i = 1; i < n; ++i) {
-      const double dt = log.t_s[i] - log.t_s[i - 1];
-      if (dt > kGapFactor * nominal_s) {
-        const auto k = std::llround(dt / nominal_s);  // intervals the gap spans
-        for (long long j = 1; j < k; ++j) {
-          const double w = static_cast<double>(j) / static_cast<double>(k);
-          out.push_back(x[i - 1] + w * (x[i] - x[i - 1]));
-        }
-      }
-      out.push_back(x[i]);
-    }
-    x.swap(out);
-  };
-  for (auto& channel : log.channels) grow(channel);
-  grow(log.t_s);  // last: the loops above read the original stamps
-  log.timing.filled_samples += missing;
-  return missing;
 }
 
 }  // namespace sigmatau

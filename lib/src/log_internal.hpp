@@ -23,6 +23,14 @@ constexpr std::size_t kMaxColumns = 100000;
 /// Longest field text quoted in an error message [characters].
 constexpr std::size_t kMaxQuotedField = 40;
 
+/// An interval of 2 nominal periods is one missing sample; 1.5 is halfway between 1 and 2, so
+/// jitter of up to +-50 % of a period is not mistaken for a gap: a gap is dt > kGapFactor x the
+/// nominal interval.
+inline constexpr double kGapFactor = 1.5;
+
+/// A duration for a message: "40 ms", "2.5 s", "-3 us" (4 significant digits).
+std::string format_seconds(double s);
+
 /// Field slots: what to do with each column of the file.
 constexpr int kSkipColumn = -1;
 constexpr int kTimeColumn = -2;
