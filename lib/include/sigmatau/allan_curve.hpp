@@ -34,10 +34,11 @@ struct CurvePoint {
   ConfidencePoint confidence;
 };
 
+/// One statistic of one series at every averaging factor that has terms, with intervals.
 struct AllanCurve {
-  Statistic statistic = Statistic::oadev;
+  Statistic statistic = Statistic::oadev;  ///< which deviation the points hold
   double confidence_level = 0.683;  ///< two-sided probability of the intervals
-  std::vector<CurvePoint> points;
+  std::vector<CurvePoint> points;   ///< in increasing tau
 };
 
 /// The statistic at the averaging factors of `taus`, with intervals at `confidence_level`

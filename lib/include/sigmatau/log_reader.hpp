@@ -37,7 +37,10 @@
 
 namespace sigmatau {
 
+/// Unit of a time column: seconds, milli-, micro- or nanoseconds.
 enum class TimeUnit { s, ms, us, ns };
+/// Type of each value of a raw binary log (none: the log is text or a ROS bag): 16- or 32-bit
+/// signed integers, 32- or 64-bit IEEE floats (value_bytes gives the size).
 enum class BinaryFormat { none, i16, i32, f32, f64 };
 
 /// What to do with NaN or Inf in a selected column (or the time column).
@@ -90,6 +93,7 @@ NonFinitePolicy parse_nonfinite_policy(std::string_view text);
 /// "header" | "receive". Throws Error otherwise.
 BagStamp parse_bag_stamp(std::string_view text);
 
+/// What to read from a log and how (text columns, raw binary layout, ROS bag topic).
 struct LogOptions {
   std::string path;                  ///< file, or "-" for stdin; gzip detected by magic bytes
   std::vector<std::string> columns;  ///< header names or 0-based indices (an all-digit entry is
@@ -97,13 +101,13 @@ struct LogOptions {
                                      ///< empty: every column whose first data field is a number,
                                      ///< except the time column, in file order
   std::string time_column;           ///< header name or 0-based index; empty: no time column
-  TimeUnit time_unit = TimeUnit::s;
+  TimeUnit time_unit = TimeUnit::s;   ///< unit of the time column's values
   NonFinitePolicy nonfinite = NonFinitePolicy::error;
   GapPolicy gaps = GapPolicy::report;  ///< see GapPolicy (needs a time column to do anything)
   // Raw binary input (interleaved samples, channel-major per row):
   BinaryFormat binary = BinaryFormat::none;
-  int binary_channels = 0;
-  bool big_endian = false;
+  int binary_channels = 0;      ///< values per row (interleaved channels)
+  bool big_endian = false;      ///< byte order of the values (default little-endian)
   std::int64_t skip_bytes = 0;  ///< header bytes to skip (of the decompressed stream)
   /// Size of each read [bytes]; 0 means the default (4 MiB). Small values exist for tests of rows
   /// split across buffer boundaries; memory use is about this plus the 1 MiB line limit.

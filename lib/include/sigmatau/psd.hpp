@@ -19,7 +19,10 @@
 
 namespace sigmatau {
 
+/// Taper applied to each Welch segment.
 enum class Window { hann, blackman_harris, rectangular };
+/// What is removed from each Welch segment before the window: nothing, its mean, or its
+/// least-squares line.
 enum class Detrend { none, mean, linear };
 
 /// "hann" | "blackman-harris" | "rectangular"; "none" | "mean" | "linear". Throw Error otherwise.
@@ -28,8 +31,10 @@ Detrend parse_detrend(std::string_view text);
 std::string_view to_string(Window window);
 std::string_view to_string(Detrend detrend);
 
+/// How a Welch PSD averages its segments.
 struct WelchOptions {
-  std::int64_t segment_length = 0;  ///< samples per segment; 0: choose from the log length
+  std::int64_t segment_length = 0;  ///< samples per segment; 0: default_segment_length of the
+                                    ///< log length
   double overlap = 0.5;             ///< fraction of a segment shared with the next, in [0, 1)
   Window window = Window::hann;
   Detrend detrend = Detrend::mean;  ///< applied to each segment before windowing
@@ -37,11 +42,11 @@ struct WelchOptions {
 
 /// A one-sided PSD.
 struct PsdCurve {
-  double rate_hz = 0;
-  std::int64_t segment_length = 0;
+  double rate_hz = 0;                 ///< sample rate of the series [Hz]
+  std::int64_t segment_length = 0;    ///< samples per Welch segment
   std::int64_t segments = 0;          ///< number of averaged segments
-  Window window = Window::hann;
-  double overlap = 0;
+  Window window = Window::hann;       ///< taper used
+  double overlap = 0;                 ///< fraction of a segment shared with the next, in [0, 1)
   std::vector<double> frequency_hz;   ///< bin centres [Hz]
   std::vector<double> psd;            ///< one-sided, unit^2/Hz
   std::vector<double> edf;            ///< equivalent degrees of freedom of each value
@@ -104,11 +109,11 @@ PsdCurve log_binned(const PsdCurve& psd, int per_decade);
 /// White-noise density read from a flat band of the PSD.
 struct NoiseDensity {
   double value = 0;          ///< N = sqrt(two-sided level) [unit/sqrt(Hz)] (data-sheet / Kalibr)
-  double ci_low = 0;         ///< confidence bounds of N at the requested level
-  double ci_high = 0;
-  double one_sided_asd = 0;  ///< sqrt(one-sided level) = sqrt(2) N
-  double band_low_hz = 0;
-  double band_high_hz = 0;
+  double ci_low = 0;         ///< lower confidence bound of N at the requested level [unit/sqrt(Hz)]
+  double ci_high = 0;        ///< upper confidence bound of N [unit/sqrt(Hz)]
+  double one_sided_asd = 0;  ///< sqrt(one-sided level) = sqrt(2) N [unit/sqrt(Hz)]
+  double band_low_hz = 0;    ///< lower edge of the band averaged [Hz]
+  double band_high_hz = 0;   ///< upper edge of the band averaged [Hz]
   double edf = 0;            ///< equivalent degrees of freedom of the band average
   bool band_detected = false;  ///< true when the band was found automatically
 };
