@@ -6,20 +6,20 @@
 #include <cstdio>
 #include <limits>
 
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/units.hpp"
 
 namespace sigmatau::report_detail {
 
 DisplayUnits display_units(const std::string& sensor) {
-  if (sensor == "gyro") {
-    return {"deg/h", "deg/sqrt(h)", "deg/h", "deg/h/sqrt(h)", "deg/h/h", "arcsec",
-            "(deg/s)^2/Hz", "deg/s/sqrt(Hz)"};
-  }
-  if (sensor == "accel") {
-    return {"ug", "ug/sqrt(Hz)", "ug", "m/s^3/sqrt(Hz)", "m/s^3", "m/s", "(m/s^2)^2/Hz",
-            "ug/sqrt(Hz)"};
-  }
-  return {"", "", "", "", "", "", "", ""};
+  if (sensor != "gyro" && sensor != "accel") return {"", "", "", "", "", "", "", ""};
+  const Sensor s = sensor == "gyro" ? Sensor::gyro : Sensor::accel;
+  const auto unit = [&](NoiseTerm term) { return std::string(display_unit(term, s)); };
+  const bool gyro = s == Sensor::gyro;
+  return {unit(NoiseTerm::bias_instability), unit(NoiseTerm::white),
+          unit(NoiseTerm::bias_instability), unit(NoiseTerm::rate_random_walk),
+          unit(NoiseTerm::rate_ramp), unit(NoiseTerm::quantization),
+          gyro ? "(deg/s)^2/Hz" : "(m/s^2)^2/Hz", gyro ? "deg/s/sqrt(Hz)" : "ug/sqrt(Hz)"};
 }
 
 /// SI value -> value in `unit` (empty unit: unchanged).
