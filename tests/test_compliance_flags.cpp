@@ -13,6 +13,7 @@
 #include "made_up_sheet.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/fit.hpp"
+#include "sigmatau/plot.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/spec.hpp"
 #include "test_support.hpp"
@@ -237,4 +238,40 @@ TEST_CASE("with a data sheet, B is shown with its floor 0.664 B next to the limi
   nlohmann::json no_sheet = results_with(compliance_of(b), 0.5, nlohmann::json::array());
   no_sheet["compliance"] = nullptr;
   CHECK(report_of(no_sheet).files.at("summary.md").find("floor 0.664 B =") == std::string::npos);
+}
+
+TEST_CASE("the compliance chart has a colour key, the interval's level, typ / max, and an arrow for a bound") {
+  if (!gnuplot_available()) {
+    MESSAGE("gnuplot not found: compliance chart check skipped");
+    return;
+  }
+  const DataSheet sheet = parse_data_sheet(kSheet, "test.yaml");
+  const MeasuredParameter bound{.sensor = Sensor::gyro,
+                                .quantity = MeasuredQuantity::bias_instability,
+                                .axis = "x",
+                                .detected = false,
+                                .upper_bound = 9.0 * kDegPerHour};
+  const auto items = check_compliance({white(0.5, 0.45, 0.55, 0.5), bound}, sheet);
+  const nlohmann::json compliance = nlohmann::json::parse(compliance_json(items, sheet, {}));
+  ReportOptions options;
+  options.plot_format = PlotFormat::svg;
+  const ReportFiles files =
+      build_report(results_with(compliance, 0.5, nlohmann::json::array()).dump(), options);
+  REQUIRE(files.files.count("compliance.svg") == 1);
+  const std::string& svg = files.files.at("compliance.svg");
+  for (const char* key : {">pass<", ">marginal<", ">fail<", ">inconclusive<", ">not detected (upper bound)<"}) {
+    CHECK_MESSAGE(svg.find(key) != std::string::npos, key);
+  }
+  CHECK(svg.find("bar: 95 % confidence interval") != std::string::npos);  // results' level
+  CHECK(svg.find("gyro white noise x (max)") != std::string::npos);
+  CHECK(svg.find("gyro bias instability x (max), not detected") != std::string::npos);
+
+  // With every term detected the key has no arrow entry.
+  const auto detected = check_compliance({white(0.5, 0.45, 0.55, 0.5)}, sheet);
+  const ReportFiles plain = build_report(
+      results_with(nlohmann::json::parse(compliance_json(detected, sheet, {})), 0.5,
+                   nlohmann::json::array())
+          .dump(),
+      options);
+  CHECK(plain.files.at("compliance.svg").find("not detected (upper bound)") == std::string::npos);
 }

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -334,13 +335,18 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
       for (char c : r.label) label += (c == '"') ? ' ' : c;
       // Reversed rows so the first item is at the top.
       out << (plot.rows.size() - 1 - i) << ' ' << r.ratio << ' ' << r.ratio_low << ' '
-          << r.ratio_high << ' ' << color << " \"" << label << "\"\n";
+          << r.ratio_high << ' ' << color << " \"" << label << "\" " << (r.detected ? 1 : 0) << "\n";
     }
   }
+  const auto undetected = std::count_if(plot.rows.begin(), plot.rows.end(),
+                                        [](const ComplianceRow& r) { return !r.detected; });
+  const std::string caption =
+      plot.caption.empty() ? "bar: confidence interval" : plot.caption;
   const auto x_range = compliance_x_range(plot);
   const std::string assignments =
       "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
+      "; xlabel_text=" + gnuplot_string(caption) + "; nundetected=" + std::to_string(undetected) +
       "; nrows=" + std::to_string(plot.rows.size()) + "; xmin=" + gnuplot_number(x_range.first) +
       "; xmax=" + gnuplot_number(x_range.second);
   run_gnuplot("compliance.gp", assignments, rendered, scratch);

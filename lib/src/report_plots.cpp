@@ -199,24 +199,33 @@ DeviationPlot dynamic_plot(const json& channel) {
 CompliancePlot compliance_plot(const json& results) {
   CompliancePlot plot;
   plot.title = "Compliance with " + results["compliance"]["spec"].value("part", std::string("data sheet"));
+  plot.caption = "bar: " + fmt(100 * results.value("confidence", 0.683), 3) +
+                 " % confidence interval; arrow: a term not detected, at most its upper bound (the arrow's start)";
   for (const auto& item : results["compliance"]["items"]) {
     const std::string verdict = item.value("verdict", "");
     if (verdict == "not specified") continue;
     ComplianceRow row;
-    row.label = item_label(item);
+    // The label says which limit it is (typ or max) and what the verdict rests on.
+    row.label = item_label(item) + (item.value("limit_is_typical", false) ? " (typ)" : " (max)");
+    if (item.value("fit_rejected", false)) row.label += ", fit rejected";
     row.verdict = verdict;
     if (undetected(item)) {
-      // Only a bound: one point at bound / limit, said so in the label.
+      // Only a bound: an arrow pointing left from bound / limit.
       row.ratio = row.ratio_low = row.ratio_high = item_number(item, "margin_upper");
-      row.label += " (not detected)";
+      row.detected = false;
+      row.label += ", not detected";
       if (std::isfinite(row.ratio)) plot.rows.push_back(row);  // no bound, nothing to draw
       continue;
     }
     row.ratio = item["margin"].get<double>();
     row.ratio_high = item["margin_upper"].get<double>();
-    const double value = item["value"].get<double>();
-    const double low = item["ci_low"].get<double>();
-    row.ratio_low = value != 0 ? row.ratio * std::abs(low / value) : row.ratio;
+    if (item.contains("margin_low") && item["margin_low"].is_number()) {
+      row.ratio_low = item["margin_low"].get<double>();
+    } else {  // older files: from the interval of the value
+      const double value = item["value"].get<double>();
+      const double low = item["ci_low"].get<double>();
+      row.ratio_low = value != 0 ? row.ratio * std::abs(low / value) : row.ratio;
+    }
     if (row.ratio_low > row.ratio) row.ratio_low = row.ratio;
     plot.rows.push_back(row);
   }

@@ -46,9 +46,15 @@ struct ComplianceRow {
   double ratio_low = 0;    ///< lower bound / limit
   double ratio_high = 0;   ///< upper bound / limit
   std::string verdict;     ///< "pass" | "marginal" | "fail" | "inconclusive"
+  /// false: the fit left the term out and only ratio_high (its one-sided upper bound / limit)
+  /// is known; drawn as an arrow pointing left from the bound, not as a point.
+  bool detected = true;
 };
 struct CompliancePlot {
   std::string title;
+  /// What the bars and arrows are, shown under "measured / data-sheet limit" on the x axis; it
+  /// should name the intervals' confidence level. Empty: "bar: confidence interval".
+  std::string caption;
   std::vector<ComplianceRow> rows;
 };
 
