@@ -71,6 +71,12 @@ const std::vector<Profile>& profiles() {
       // it gives quantization a prior (fit_select.hpp, kQuantizationPriorPenalty).
       {"quantized_gyro", "MEMS gyro with a small quantization, 100 Hz, 2 h", Sensor::gyro, 100, 2,
        "Q=0.1 arcsec, N=0.15 deg/sqrt(h), B=3 deg/h, K=15 deg/h/sqrt(h)"},
+      // Short logs (review F, finding 2): VIO users record 5-30 min, where K's rise and B's
+      // floor share the last few taus. bench/results_fit_short_logs.md.
+      {"short_gyro_5min", "MEMS gyro, 200 Hz, 5 min", Sensor::gyro, 200, 5.0 / 60,
+       "N=0.2 deg/sqrt(h), B=4 deg/h, K=20 deg/h/sqrt(h)"},
+      {"short_gyro_30min", "MEMS gyro, 200 Hz, 30 min", Sensor::gyro, 200, 0.5,
+       "N=0.2 deg/sqrt(h), B=4 deg/h, K=20 deg/h/sqrt(h)"},
   };
   return p;
 }
@@ -91,6 +97,10 @@ struct Tally {
   std::vector<double> signed_error;  // value / truth - 1 (-1 when left out)
   int covered = 0;
   int estimated = 0;
+  // Channels that kept the term: value / truth, and whether the interval covers, split by the
+  // short-log rule (rise_without_floor: flagged).
+  std::vector<double> kept_ratio[2];
+  int kept_covered[2] = {0, 0};
 };
 
 struct MethodTally {
@@ -144,7 +154,7 @@ void record(MethodTally& tally, const ChannelFit& fit, const NoiseTerms& truth,
     row.out << row.profile << ',' << row.method << ',' << row.seed << ',' << row.axis << ",\""
             << name << "\"," << term_symbol(term) << ',' << x << ',' << (p.in_model ? 1 : 0)
             << ',' << p.value << ',' << p.ci_low << ',' << p.ci_high << ',' << p.upper_bound
-            << '\n';
+            << ',' << p.leading_points << ',' << p.edf << '\n';
     Tally& t = tally.terms[term];
     // A true term the model left out counts as a 100% error; its report is the statement
     // "below upper_bound", i.e. the interval [0, upper_bound], which covers when x <= bound.
@@ -152,7 +162,11 @@ void record(MethodTally& tally, const ChannelFit& fit, const NoiseTerms& truth,
     t.signed_error.push_back(p.in_model ? p.value / x - 1 : -1.0);
     if (p.in_model) {
       ++t.estimated;
-      if (p.ci_low <= x && x <= p.ci_high) ++t.covered;
+      const bool covers = p.ci_low <= x && x <= p.ci_high;
+      if (covers) ++t.covered;
+      const int flagged = rise_without_floor(fit) ? 1 : 0;
+      t.kept_ratio[flagged].push_back(p.value / x);
+      if (covers) ++t.kept_covered[flagged];
     } else if (x <= p.upper_bound) {
       ++t.covered;
     }
@@ -190,7 +204,7 @@ int main(int argc, char** argv) {
   std::ostringstream channels;
   channels.precision(9);
   channels << "profile,method,seed,axis,model,param,truth_si,in_model,value,ci_low,ci_high,"
-              "upper_bound\n";
+              "upper_bound,leading_points,edf\n";
   csv << "profile,method,param,truth_si,runs,median_abs_rel_error,median_abs_rel_error_low,"
          "median_abs_rel_error_high,median_rel_error,coverage,model_correct,"
          "fit_ms_per_channel,curve_ms_per_channel,covariance_build_ms\n";
@@ -292,6 +306,31 @@ int main(int argc, char** argv) {
                       static_cast<double>(m->correct_model) / runs, per_fit_ms,
                       1e3 * curve_seconds / runs, 1e3 * covariance_build_seconds);
         csv << line;
+      }
+    }
+    // Channels that kept K or R, split by the short-log rule (rise_without_floor, joint fit
+    // only): how often the term is kept, how often its interval covers, the median of
+    // value / truth.
+    for (const auto* m : {&joint}) {
+      for (const NoiseTerm term : true_terms) {
+        if (term != NoiseTerm::rate_random_walk && term != NoiseTerm::rate_ramp) continue;
+        const Tally& t = m->terms.at(term);
+        md << "| " << profile.name << " | joint | "
+           << term_symbol(term) << " | kept | ";
+        for (int flagged = 0; flagged < 2; ++flagged) {
+          const auto& r = t.kept_ratio[flagged];
+          char text[200];
+          std::snprintf(text, sizeof text, "%s%s: kept %d of %d (%.1f%%), interval covers %d (%.1f%%), "
+                        "median value/truth %.2f",
+                        flagged ? "; " : "",
+                        flagged ? "no floor (warned)" : "with a floor",
+                        static_cast<int>(r.size()), runs, 100.0 * static_cast<double>(r.size()) / runs,
+                        t.kept_covered[flagged],
+                        r.empty() ? 0.0 : 100.0 * t.kept_covered[flagged] / static_cast<double>(r.size()),
+                        median(r));
+          md << text;
+        }
+        md << " | | | | | |\n";
       }
     }
     md << "| " << profile.name << " | | | " << profile.description << ", " << runs

@@ -17,6 +17,8 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/channel_names.hpp"
+#include "sigmatau/data_checks.hpp"
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
@@ -50,22 +52,20 @@ struct Channel {
   NoiseFit fit;
 };
 
-/// SI unit (JSON) and data-sheet unit (table) of each term, per sensor.
+/// SI unit (JSON) and data-sheet unit (table, display_unit) of each term, per sensor.
 struct TermUnits {
   const char* si;
-  const char* sheet;
+  std::string_view sheet;
 };
 TermUnits units_of(NoiseTerm term, Sensor sensor) {
   const bool g = sensor == Sensor::gyro;
+  const std::string_view sheet = display_unit(term, sensor);
   switch (term) {
-    case NoiseTerm::quantization: return g ? TermUnits{"rad", "arcsec"} : TermUnits{"m/s", "m/s"};
-    case NoiseTerm::white:
-      return g ? TermUnits{"rad/s/sqrt(Hz)", "deg/sqrt(h)"} : TermUnits{"m/s^2/sqrt(Hz)", "ug/sqrt(Hz)"};
-    case NoiseTerm::bias_instability: return g ? TermUnits{"rad/s", "deg/h"} : TermUnits{"m/s^2", "ug"};
-    case NoiseTerm::rate_random_walk:
-      return g ? TermUnits{"rad/s^2/sqrt(Hz)", "deg/h/sqrt(h)"}
-               : TermUnits{"m/s^3/sqrt(Hz)", "m/s/h^1.5"};
-    default: return g ? TermUnits{"rad/s^2", "deg/h^2"} : TermUnits{"m/s^3", "m/s/h^2"};
+    case NoiseTerm::quantization: return {g ? "rad" : "m/s", sheet};
+    case NoiseTerm::white: return {g ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)", sheet};
+    case NoiseTerm::bias_instability: return {g ? "rad/s" : "m/s^2", sheet};
+    case NoiseTerm::rate_random_walk: return {g ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)", sheet};
+    default: return {g ? "rad/s^2" : "m/s^3", sheet};
   }
 }
 
@@ -106,11 +106,16 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
       j["value"] = p.value;
       j["ci_low"] = p.ci_low;
       j["ci_high"] = p.ci_high;
+      j["leading_points"] = p.leading_points;
     } else {
       j["upper_bound"] = p.upper_bound;
     }
     j["unit"] = units_of(p.term, sensor).si;
-    if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) j["tau_min_s"] = p.tau_min_s;
+    if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) {
+      // The curve's own smallest ADEV and its tau (not the model's floor 0.664 B).
+      j["tau_min_s"] = p.tau_min_s;
+      j["adev_min"] = p.adev_min;
+    }
     params[std::string(term_symbol(p.term))] = j;
   }
   return params;
@@ -120,6 +125,17 @@ nlohmann::json terms_json(const ChannelFit& fit) {
   nlohmann::json t = nlohmann::json::array();
   for (const auto term : fit.model_terms) t.push_back(std::string(term_symbol(term)));
   return t;
+}
+
+/// The joint fit's warnings on a channel: the misfit and the short-log K or R.
+std::vector<std::string> channel_warnings(const Channel& c) {
+  std::vector<std::string> out;
+  if (!c.fit.joint) return out;
+  for (const std::string& w : {misfit_warning(*c.fit.joint, c.name),
+                               short_log_warning(*c.fit.joint, c.name)}) {
+    if (!w.empty()) out.push_back(w);
+  }
+  return out;
 }
 
 std::string render_json(const std::string& input, const std::vector<Channel>& channels,
@@ -139,6 +155,7 @@ std::string render_json(const std::string& input, const std::vector<Channel>& ch
     j["parameters"] = parameters_json(primary, c.sensor);
     j["method"] = std::string(to_string(primary.method));
     j["points"] = primary.points;
+    j["warnings"] = channel_warnings(c);
     if (c.fit.joint) {
       j["chi_squared"] = primary.chi_squared;
       j["bic"] = primary.bic;
@@ -182,26 +199,34 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
   out << line;
   for (const auto& p : fit.parameters) {
     const TermUnits u = units_of(p.term, sensor);
-    const double f = convert(1.0, u.si, u.sheet);
+    const std::string sheet(u.sheet);
+    const double f = convert(1.0, u.si, sheet);
     const std::string sym(term_symbol(p.term));
     const std::string nm(term_name(p.term, sensor));
     if (p.in_model) {
       std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
-                    p.ci_low * f, p.value * f, p.ci_high * f, u.sheet);
+                    p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str());
     } else {
       std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
-                    sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, u.sheet);
+                    sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, sheet.c_str());
     }
     out << line;
     if (p.term == NoiseTerm::bias_instability) {
       // Data sheets print the Allan floor 0.664 B as the bias stability, not B: said beside it,
       // or a STIM300 at its typical 0.5 deg/h reads as 0.75 deg/h here, 50 % over.
+      // The curve's own minimum is printed with its value: beside the model's floor, its tau
+      // alone read as "the curve's minimum is the floor", 5-7x off when the model misfits.
       char floor[80];
       std::snprintf(floor, sizeof floor, "%.5g %s", kFlickerFloorFactor * (p.in_model ? p.value : p.upper_bound) * f,
-                    u.sheet);
+                    sheet.c_str());
       out << "  (ADEV floor 0.664 B " << (p.in_model ? "= " : "< ") << floor
           << ", as data sheets print bias stability";
-      if (p.in_model && std::isfinite(p.tau_min_s)) out << "; minimum at tau = " << p.tau_min_s << " s";
+      if (std::isfinite(p.tau_min_s) && std::isfinite(p.adev_min)) {
+        char minimum[120];
+        std::snprintf(minimum, sizeof minimum, "; curve minimum %.4g %s at tau = %.5g s",
+                      p.adev_min * f, sheet.c_str(), p.tau_min_s);
+        out << minimum;
+      }
       out << ")";
     }
     out << "\n";
@@ -211,6 +236,8 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
                   fit.chi_squared, fit.dof, fit.p_value,
                   fit.p_value < kMisfitPValue ? " (the model does not describe the curve)" : "");
     out << line;
+    const std::string short_log = short_log_warning(fit, name);
+    if (!short_log.empty()) out << "   warning: " << short_log << "\n";
   }
 }
 
@@ -228,12 +255,13 @@ std::string render_table(const std::string& input, const std::vector<Channel>& c
     out << "): mean and worst axis\n";
     for (const auto& e : t.entries) {
       const TermUnits u = units_of(e.term, t.sensor);
-      const double f = convert(1.0, u.si, u.sheet);
+      const std::string sheet(u.sheet);
+      const double f = convert(1.0, u.si, sheet);
       char line[200];
       std::snprintf(line, sizeof line, "%-2s %-24s mean %12.5g  worst %12.5g (%s)  %s",
                     std::string(term_symbol(e.term)).c_str(),
                     std::string(term_name(e.term, t.sensor)).c_str(), e.mean * f, e.worst * f,
-                    e.worst_channel.c_str(), u.sheet);
+                    e.worst_channel.c_str(), sheet.c_str());
       out << line;
       if (e.channels_in_model < static_cast<int>(t.channels.size())) {
         out << "  (over the " << e.channels_in_model << " of " << t.channels.size()
@@ -268,9 +296,8 @@ void check_unit_names_a_sensor(const LogArguments& args) {
 }
 
 void warn_constant(const std::string& input, const std::string& channel) {
-  std::cerr << "sigmatau: warning: " << input << ": channel " << channel
-            << " is constant (every OADEV value is 0: a stuck sensor, or not a signal); left out of "
-               "the fit\n";
+  std::cerr << "sigmatau: warning: " << input << ": "
+            << constant_channel_text(channel, "every OADEV value is 0") << "; left out of the fit\n";
 }
 
 void scale_curve(AllanCurve& curve, double factor) {
@@ -438,9 +465,7 @@ void run_fit(const FitArguments& args) {
   const auto triads = summarise_triads(names, sensors, fits);
   for (const auto& c : channels) {
     if (!c.fit.joint) continue;
-    if (const std::string w = misfit_warning(*c.fit.joint, c.name); !w.empty()) {
-      std::cerr << "sigmatau: warning: " << w << "\n";
-    }
+    for (const std::string& w : channel_warnings(c)) std::cerr << "sigmatau: warning: " << w << "\n";
   }
   const std::string text = args.format == "json"
                                ? render_json(args.log.input, channels, triads, args.ci)

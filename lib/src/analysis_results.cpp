@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "sigmatau/allan.hpp"
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/filter_export.hpp"
 #include "sigmatau/fit.hpp"
@@ -92,6 +93,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
       entry["ci_high"] = p.ci_high;
       if (std::isfinite(p.edf)) entry["edf"] = p.edf;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+      if (p.term == NoiseTerm::bias_instability && std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
     } else {
       entry["upper_bound"] = p.upper_bound;
     }
@@ -133,6 +135,39 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"model_adev", {{"tau", taus}, {"adev", total}}},
           {"terms_adev", per_term},
           {"readouts", readouts}};
+}
+
+/// Data-sheet noise densities are quoted to about 10 %: a smaller gap between the fit's N and
+/// the PSD's changes no decision, however narrow the intervals of a long log make it.
+constexpr double kWhiteNoiseGap = 1.1;
+
+/// A note when the fit's N and the PSD's noise density (add_psd) differ by more than their
+/// intervals allow and by more than kWhiteNoiseGap; "" otherwise or without a PSD.
+std::string white_noise_gap(const std::string& name, Sensor sensor, const ParameterEstimate& n,
+                            const json& channel, double confidence) {
+  if (!n.in_model || !channel.contains("psd")) return "";
+  const json& nd = channel["psd"]["noise_density"];
+  const double psd = nd.value("value", 0.0), low = nd.value("ci_low", 0.0), high = nd.value("ci_high", 0.0);
+  if (!(psd > 0) || !(n.value > 0)) return "";
+  const double ratio = n.value / psd;
+  if (std::max(ratio, 1 / ratio) <= kWhiteNoiseGap || (n.ci_low <= high && low <= n.ci_high)) return "";
+  const std::string unit(display_unit(NoiseTerm::white, sensor));
+  const double f = convert(1.0, sensor == Sensor::gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)", unit);
+  const auto band = nd.value("band_hz", json::array({0.0, 0.0}));
+  char text[900];
+  std::snprintf(text, sizeof text,
+                "%s: the white noise of the fit, N = %.4g %s [%.4g, %.4g], and the PSD's noise "
+                "density over %.3g-%.3g Hz, %.4g %s [%.4g, %.4g], differ %.2fx, more than their "
+                "%.1f %% intervals allow: the spectrum is not white across the band (%s; see the "
+                "PSD plot). The filter files and the data-sheet verdicts use the fit's N, the level "
+                "the Allan curve (and a filter at this rate) sees over all frequencies; the PSD's "
+                "value is what a data sheet means by noise density in a flat band",
+                name.c_str(), n.value * f, unit.c_str(), n.ci_low * f, n.ci_high * f,
+                band[0].get<double>(), band[1].get<double>(), psd * f, unit.c_str(), low * f,
+                high * f, ratio, 100 * confidence,
+                ratio > 1 ? "power outside the flat band, e.g. a resonance, adds to the short taus"
+                          : "the spectrum falls toward Nyquist, e.g. the sensor filters its output");
+  return text;
 }
 
 std::string rate_label(double rate_hz) {
@@ -275,6 +310,12 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
       const ChannelFit& joint = *fit.joint;
       if (const std::string w = misfit_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
+      if (const std::string w = short_log_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
+      if (c < results["channels"].size()) {
+        const std::string w = white_noise_gap(channel.name, channel.role->sensor, joint.parameter(NoiseTerm::white),
+                                              results["channels"][c], options.confidence);
+        if (!w.empty()) warnings.push_back(w);
+      }
       const auto& points = curves[c].front().points;
       fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
                               points.back().value.tau_s));

@@ -58,8 +58,9 @@ struct AvarPoint {
 
 ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& source,
                      const FitOptions& options);
+/// `j_min`: index in `points` of the smallest ADEV (B's read-out point).
 ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& source,
-                      const FitOptions& options);
+                      const FitOptions& options, std::size_t j_min);
 
 /// Non-negative least squares min ||A x - b||, x >= 0 (Lawson-Hanson active set).
 Eigen::VectorXd nnls(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);

@@ -328,8 +328,6 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   for (int k = 0; k < kTermCount; ++k) {
     ParameterEstimate p;
     p.term = kFitTerms[static_cast<std::size_t>(k)];
-    p.tau_min_s = std::numeric_limits<double>::quiet_NaN();
-    p.edf = std::numeric_limits<double>::quiet_NaN();
     const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
     if (col != final_fit.fit.columns.end()) {
       const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
@@ -349,6 +347,12 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
         p.ci_high = std::sqrt(theta + z_one_sided * std::sqrt(std::max(var, 0.0)));
       }
       p.upper_bound = p.ci_high;
+      // Where this term carries the curve: its modelled AVAR above the other kept terms' sum.
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double own = d.a(j, k) * theta;
+        const double all = d.a.row(j).dot(final_fit.fit.theta);
+        if (own > all - own) ++p.leading_points;
+      }
     } else {
       p.upper_bound = std::sqrt(upper_bound(d, model, k, final_fit.fit.theta, *basis, z_one_sided));
     }

@@ -85,14 +85,10 @@ std::vector<std::size_t> longest_run(const std::vector<std::size_t>& on, NoiseTe
 }  // namespace
 
 ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /*source*/,
-                      const FitOptions& options) {
+                      const FitOptions& options, std::size_t j_min) {
   const double level = options.confidence_level;
   const double z = boost::math::quantile(boost::math::normal_distribution<double>(), (1 + level) / 2);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::size_t j_min = 0;
-  for (std::size_t j = 1; j < points.size(); ++j) {
-    if (points[j].dev < points[j_min].dev) j_min = j;
-  }
   const bool forced = !options.terms.empty();
 
   ChannelFit out;
@@ -103,7 +99,6 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
   for (const NoiseTerm term : kFitTerms) {
     ParameterEstimate p;
     p.term = term;
-    p.tau_min_s = term == NoiseTerm::bias_instability ? points[j_min].tau_s : nan;
     p.edf = nan;
     std::vector<std::size_t> on;
     for (std::size_t j = 0; j < points.size(); ++j) {
@@ -128,6 +123,7 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
       p.ci_low = ci.low / kFlickerFloorFactor;
       p.ci_high = ci.high / kFlickerFloorFactor;
       p.edf = q.edf;
+      p.leading_points = 1;
     } else if (wanted && !on.empty()) {
       const ReadOff r = read_off(term);
       double mean_log = 0, mean_sd = 0, edf = 0;
@@ -144,6 +140,7 @@ ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& /
       p.ci_low = p.value * std::exp(-z * mean_sd);
       p.ci_high = p.value * std::exp(z * mean_sd);
       p.edf = edf;
+      p.leading_points = static_cast<int>(on.size());
     } else if (wanted) {
       // Forced but no point shows the slope: nothing to read; report the bound only.
       p.in_model = false;

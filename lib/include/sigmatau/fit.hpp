@@ -73,8 +73,9 @@ struct CurveSource {
 
 struct FitOptions {
   FitMethod method = FitMethod::joint;
-  /// Forced model (--terms); empty: the model is selected by BIC among all subsets of
-  /// `candidates`.
+  /// Forced model (--terms); empty: the model is selected among the subsets of `candidates`
+  /// in the two stages described at the top of this file (BIC, then a curve likelihood for B,
+  /// K and R, with priors on R and Q).
   std::vector<NoiseTerm> terms;
   /// Terms model selection may use (default all five of kFitTerms).
   std::vector<NoiseTerm> candidates{kFitTerms.begin(), kFitTerms.end()};
@@ -96,11 +97,19 @@ struct ParameterEstimate {
   double ci_high = 0;
   /// One-sided upper bound at the confidence level (also set, = ci_high, for model terms).
   double upper_bound = 0;
-  /// B only: tau of the ADEV minimum [s] (NaN for the other terms).
-  double tau_min_s = 0;
+  /// B only: tau of the fitted curve's smallest ADEV [s] (NaN for the other terms).
+  double tau_min_s = std::numeric_limits<double>::quiet_NaN();
+  /// B only: the curve's own ADEV at tau_min_s, in the rate unit (SI), not the model's floor
+  /// 0.664 B: the two differ when the model misfits (NaN for the other terms).
+  double adev_min = std::numeric_limits<double>::quiet_NaN();
   /// Effective degrees of freedom of the estimate (joint fit: Satterthwaite, 2 theta^2 /
   /// var(theta); slopes: sum of the EDFs of the points on the line). NaN when not applicable.
-  double edf = 0;
+  double edf = std::numeric_limits<double>::quiet_NaN();
+  /// Terms in the model only: the number of fitted taus at which this term carries the curve.
+  /// Joint fit: points where its modelled AVAR exceeds the sum of the other kept terms'.
+  /// Slopes: points on its slope line (B: 1, the minimum). 0 for a term not in the model
+  /// (rise_without_floor reads B's).
+  int leading_points = 0;
 };
 
 /// The result of one method on one channel.
@@ -149,6 +158,24 @@ void check_tau_range(double tau_min_s, double tau_max_s);
 inline constexpr double kMisfitPValue = 1e-3;
 /// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel);
+
+/// Whether a joint fit keeps K or R while B carries the curve at no fitted tau (B left out, or
+/// kept but below the other terms' sum everywhere): the curve shows no flicker floor before it
+/// rises, so the rise is not told apart from B. On simulated logs of N = 0.2 deg/sqrt(h), B = 4
+/// deg/h, K = 20 deg/h/sqrt(h) at 200 Hz (bench/results_fit_short_logs.md) every K kept from a
+/// 5-minute log is such a K, and a K kept with a floor covers its truth as its level says.
+bool rise_without_floor(const ChannelFit& fit);
+/// Measured on K kept without a floor (bench/results_fit_short_logs.md, 200 seeds x 3 axes,
+/// seeds 1-200): the coverage of its nominal 95 % interval and its median value / truth, on
+/// 5-minute logs (96 of 600 channels kept K, all without a floor) and 30-minute logs (108 of
+/// 600; the 117 that kept K with a floor covered in 99.1 %, median 1.13). Quoted by
+/// short_log_warning.
+inline constexpr double kRiseWithoutFloorCoverage5min = 0.010;
+inline constexpr double kRiseWithoutFloorRatio5min = 3.27;
+inline constexpr double kRiseWithoutFloorCoverage30min = 0.583;
+inline constexpr double kRiseWithoutFloorRatio30min = 1.51;
+/// A warning naming `channel` when rise_without_floor(fit), else "".
+std::string short_log_warning(const ChannelFit& fit, const std::string& channel);
 
 /// Fewest usable AVAR points a fit accepts.
 inline constexpr int kMinFitPoints = 4;
