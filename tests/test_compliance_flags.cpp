@@ -275,3 +275,52 @@ TEST_CASE("the compliance chart has a colour key, the interval's level, typ / ma
       options);
   CHECK(plain.files.at("compliance.svg").find("not detected (upper bound)") == std::string::npos);
 }
+
+TEST_CASE("the ADEV plot keys every fitted term once, whichever channel keeps it, each in its own colour") {
+  if (!gnuplot_available()) {
+    MESSAGE("gnuplot not found: ADEV legend check skipped");
+    return;
+  }
+  const std::vector<double> taus = {0.01, 0.1, 1.0, 10.0, 100.0};
+  nlohmann::json points = nlohmann::json::array();
+  std::vector<double> white_line, walk_line;
+  for (const double tau : taus) {
+    const double dev = 1e-4 / std::sqrt(tau);
+    points.push_back({{"tau", tau}, {"dev", dev}, {"ci_low", 0.9 * dev}, {"ci_high", 1.1 * dev}});
+    white_line.push_back(dev);
+    walk_line.push_back(1e-6 * std::sqrt(tau));
+  }
+  const nlohmann::json allan = {{{"statistic", "oadev"}, {"points", points}}};
+  const nlohmann::json model = {{"tau", taus}, {"adev", white_line}};
+  // gx keeps N only, gy keeps N and K: the K line used to have no key entry.
+  const nlohmann::json results = {
+      {"tool", "sigmatau"},
+      {"version", "test"},
+      {"input", {{"path", "log.csv"}}},
+      {"channels",
+       {{{"name", "gx"}, {"sensor", "gyro"}, {"allan", allan}},
+        {{"name", "gy"}, {"sensor", "gyro"}, {"allan", allan}}}},
+      {"fit",
+       {{"channels",
+         {{{"name", "gx"}, {"model_adev", model}, {"terms_adev", {{"N", white_line}}}},
+          {{"name", "gy"},
+           {"model_adev", model},
+           {"terms_adev", {{"N", white_line}, {"K", walk_line}}}}}}}}};
+  ReportOptions options;
+  options.plot_format = PlotFormat::svg;
+  const ReportFiles files = build_report(results.dump(), options);
+  REQUIRE(files.files.count("adev_gyro.svg") == 1);
+  const std::string& svg = files.files.at("adev_gyro.svg");
+  CHECK(svg.find(">K term<") != std::string::npos);
+  // Keyed once: as often as a channel's own key entry (the SVG repeats each key text).
+  const auto count = [&svg](const std::string& text) {
+    std::size_t n = 0;
+    for (auto at = svg.find(text); at != std::string::npos; at = svg.find(text, at + 1)) ++n;
+    return n;
+  };
+  CHECK(count(">N term<") == count(">gx<"));
+  CHECK(count(">K term<") == count(">gx<"));
+  // Distinct colours per term (SVG writes them as rgb(r, g, b)): N cyan, K brown.
+  CHECK(svg.find("rgb( 23, 190, 207)") != std::string::npos);
+  CHECK(svg.find("rgb(140,  86,  75)") != std::string::npos);
+}

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 
 #include "report_common.hpp"
 #include "sigmatau/error.hpp"
@@ -44,9 +45,21 @@ std::string white_line_name(const json& results, const std::string& sensor) {
   return "data sheet white noise";
 }
 
+/// The colour of a fitted term's asymptote on an ADEV plot: one per term, none of them the
+/// channels' (blue, red, green) or the data sheet's lines (black, dark grey).
+std::string term_color(const std::string& term) {
+  if (term == "N") return "#17becf";  // cyan
+  if (term == "B") return "#9467bd";  // purple
+  if (term == "K") return "#8c564b";  // brown
+  if (term == "Q") return "#e377c2";  // pink
+  if (term == "R") return "#bcbd22";  // olive
+  return "#999999";
+}
+
 DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
   const DisplayUnits u = display_units(sensor);
   DeviationPlot plot;
+  std::set<std::string> keyed_terms;
   std::string statistic = "OADEV";
   std::size_t index = 0;
   for (const auto& channel : results["channels"]) {
@@ -77,8 +90,10 @@ DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
       if (fit->contains("terms_adev")) {
         for (const auto& [term, values] : (*fit)["terms_adev"].items()) {
           PlotCurve t;
-          t.name = index == 0 ? term + " term" : "";
-          t.color = "#999999";
+          // One colour per term, keyed the first time any channel has it (a K kept only on gz
+          // was drawn but had no key entry when the key came from the first channel alone).
+          t.name = keyed_terms.insert(term).second ? term + " term" : "";
+          t.color = term_color(term);
           t.x = model["tau"].get<std::vector<double>>();
           for (double v : values.get<std::vector<double>>()) t.y.push_back(in_unit(v, u.deviation));
           plot.lines.push_back(t);
@@ -86,7 +101,7 @@ DeviationPlot deviation_plot(const json& results, const std::string& sensor) {
       }
       if (fit->contains("readouts")) {
         PlotCurve markers;
-        markers.name = index == 0 ? "read-off points" : "";
+        markers.name = keyed_terms.insert("read-off").second ? "read-off points" : "";
         markers.color = pc.color;
         for (const auto& r : (*fit)["readouts"]) {
           markers.x.push_back(r["tau"].get<double>());
