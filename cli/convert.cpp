@@ -92,13 +92,13 @@ void run_convert(const ConvertArguments& args) {
   }
 
   std::vector<TriadNoise> triads;
+  std::optional<FitForFilter> fit;
   std::string source;
   // Sensors the sheet describes without any noise term: said in the explanation, as a sensor
   // with some terms says "white noise: not given" (the BMI088's accelerometer used to vanish).
   std::string silent_sensors;
   if (!args.fit.empty()) {
-    const std::string text = read_text_file(args.fit);
-    triads = triads_from_fit_json(text, args.fit);
+    fit = read_fit_for_filter(read_text_file(args.fit), args.fit);
     source = "noise-term fit " + args.fit;
   } else if (!args.spec.empty()) {
     const auto file = find_data_sheet(args.spec, resource_dir("specs"));
@@ -168,8 +168,11 @@ void run_convert(const ConvertArguments& args) {
     source = "command-line terms";
   }
 
-  DiscreteNoise noise = convert_noise(triads, options, source);
+  DiscreteNoise noise = fit ? convert_fit(*fit, options, source) : convert_noise(triads, options, source);
   noise.explain += silent_sensors;
+  // What the files' headers say about the fit they rest on, said where a user sees it too.
+  for (const auto& w : noise.warnings) std::cerr << "sigmatau: warning: " << args.fit << ": " << w << "\n";
+  if (!noise.rate_note.empty()) std::cerr << "sigmatau: warning: " << noise.rate_note << "\n";
   if (!format) {
     std::cout << noise.explain;
     return;
@@ -225,7 +228,9 @@ void add_convert_command(CLI::App& app) {
                       "time after which the bias stability is reached (rw), e.g. 100s")
       ->capture_default_str();
   command->add_option("--tau-min", args->tau_min,
-                      "tau of the ADEV minimum for --bias-model gm (default: --tref)");
+                      "tau of the ADEV minimum for --bias-model gm, on every axis (default: "
+                      "with --fit, each axis's tau of the ADEV minimum the fit measured; else "
+                      "--tref)");
   command->add_option("--inflate", args->inflate,
                       "inflation factor F: densities and sigmas x F, variances x F^2")
       ->capture_default_str();

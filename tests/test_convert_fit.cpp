@@ -26,7 +26,8 @@ TEST_CASE("a fit result becomes triads; a bias term kept on some axes gets its b
   CHECK(*gyro.axes[0].bias_instability == 3e-6);
   CHECK(*gyro.axes[1].bias_instability == 5e-6);  // not kept on y: its upper bound
   CHECK_FALSE(gyro.axes[0].rate_random_walk.has_value());  // K kept nowhere: stays absent
-  CHECK(gyro.bias_origin.find("B on axis y: not detected, its upper bound used") != std::string::npos);
+  CHECK(gyro.bias_instability_is_bound[1]);
+  CHECK_FALSE(gyro.bias_instability_is_bound[0]);
   CHECK(*gyro.axes[2].white == 2e-4);  // no gz channel: the largest measured axis stands in
   CHECK(*gyro.axes[2].bias_instability == 5e-6);
   CHECK(gyro.white_origin.find("axes z not in the fit") != std::string::npos);
@@ -40,7 +41,8 @@ TEST_CASE("a fit result becomes triads; a bias term kept on some axes gets its b
   o.rate_hz = 100;
   const std::string kalibr =
       export_filter_config(convert_noise(triads, o, "fit.json"), ExportFormat::kalibr);
-  CHECK(kalibr.find("# gyro bias: B / K from the noise-term fit; B on axis y: not detected, its "
+  // z has no channel and takes y's B, a bound: the file says so for both.
+  CHECK(kalibr.find("# gyro bias: from the noise-term fit; B on axes y, z: not detected, its "
                     "upper bound used") != std::string::npos);
   CHECK(kalibr.find("# accel bias:") == std::string::npos);  // accel K measured on its axis
 }
@@ -61,12 +63,13 @@ TEST_CASE("a triad with neither B nor K kept gets both upper bounds, so a filter
   CHECK(gyro.bias_from_upper_bound);
   CHECK(*gyro.axes[1].rate_random_walk == 3e-6);
   CHECK(*gyro.axes[2].bias_instability == 6e-6);
-  CHECK(gyro.bias_origin.find("neither B nor K detected on any axis: their upper bounds used") !=
-        std::string::npos);
+  CHECK(gyro.no_bias_term_detected);
   ConvertOptions o;
   o.rate_hz = 100;
   const std::string kalibr =
       export_filter_config(convert_noise(triads, o, "fit.json"), ExportFormat::kalibr);
+  CHECK(kalibr.find("neither B nor K detected on any axis: K's upper bound used on every axis") !=
+        std::string::npos);
   CHECK(kalibr.find("\ngyroscope_random_walk: 3.0") != std::string::npos);  // the largest axis
   CHECK(kalibr.find("gyroscope_random_walk: not given") == std::string::npos);
 }

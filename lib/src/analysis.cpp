@@ -51,6 +51,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   AnalysisOutput output;
   json results = detail::results_header(options);
   json warnings = json::array();
+  results["unit_warnings"] = json::array();
 
   // Data checks on the log as read: saturation and stuck runs per channel, and whether each
   // triad's magnitude is plausible for its declared unit (a static log is assumed).
@@ -75,7 +76,12 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
                             : (triad_axes[s].size() == 3
                                    ? check_accel_unit(triad_axes[s], triad_names[s], unit, to_si)
                                    : std::nullopt);
-      if (w) warnings.push_back(w->message);
+      if (w) {
+        warnings.push_back(w->message);
+        // Also apart, for the filter files' headers (convert_fit.cpp).
+        results["unit_warnings"].push_back({{"channels", w->channel}, {"likely_unit", w->likely_unit},
+                                            {"message", w->message}});
+      }
     }
   } catch (const Error& e) {
     warnings.push_back(std::string("data checks skipped: ") + e.what());

@@ -65,7 +65,9 @@ class StreamingChecks {
     rows_ += values.empty() ? 0 : static_cast<std::int64_t>(values[0].size());
   }
 
-  void warnings(json& out) {
+  /// out: every warning, as run_analysis's; unit_out: the unit warnings apart (its
+  /// "unit_warnings", read by the filter files' headers).
+  void warnings(json& out, json& unit_out) {
     try {
       for (auto& checker : runs_) {
         for (const auto& w : checker.finish()) out.push_back(w.message);
@@ -79,7 +81,11 @@ class StreamingChecks {
                    : (triad_[s].size() == 3
                           ? check_accel_unit_sums(accel_norm_sum_, rows_, triad_names_[s], unit, to_si)
                           : std::nullopt);
-        if (w) out.push_back(w->message);
+        if (w) {
+          out.push_back(w->message);
+          unit_out.push_back({{"channels", w->channel}, {"likely_unit", w->likely_unit},
+                              {"message", w->message}});
+        }
       }
     } catch (const Error& e) {
       out.push_back(std::string("data checks skipped: ") + e.what());
@@ -184,7 +190,8 @@ AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, Analysi
   AnalysisOutput output;
   json results = detail::results_header(options);
   json warnings = json::array();
-  checks.warnings(warnings);
+  results["unit_warnings"] = json::array();
+  checks.warnings(warnings, results["unit_warnings"]);
 
   // Pass 2: the warm-up's block means of every channel's rates.
   json trim = detail::trim_mode_json(options);

@@ -132,6 +132,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"dof", fit.dof},
           {"p_value", number_or_null(fit.p_value)},
           {"misfit_tau_s", number_or_null(fit.misfit_tau_s)},
+          {"misfit_at_shortest_taus", fit.misfit_at_shortest_taus},
           {"model_adev", {{"tau", taus}, {"adev", total}}},
           {"terms_adev", per_term},
           {"readouts", readouts}};
@@ -347,9 +348,15 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
   results["filter"] = json::array();
   // The same conversion as `convert --fit` on this fit (terms kept on some axes only are given
   // their upper bound on the others: convert.hpp, triads_from_fit_json).
-  std::vector<TriadNoise> present;
-  if (!fits.empty()) present = triads_from_fit_json(results["fit"].dump(), "the fit above");
-  if (!present.empty()) {
+  // The files also carry what the fit rests on: rejected fits, implausible units (recorded by
+  // the data checks in "unit_warnings"), the method, terms left out, a rate above the log's.
+  std::optional<FitForFilter> present;
+  if (!fits.empty()) {
+    json fit_doc = {{"fit", results["fit"]}, {"input", {{"rate_hz", rate_hz}}}};
+    if (results.contains("unit_warnings")) fit_doc["unit_warnings"] = results["unit_warnings"];
+    present = read_fit_for_filter(fit_doc.dump(), "the fit above");
+  }
+  if (present) {
     std::vector<double> rates = options.filter_rates_hz;
     if (rates.empty()) rates.push_back(rate_hz);
     for (double rate : rates) {
@@ -358,7 +365,9 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       convert.bias_model = options.bias_model;
       convert.convention = options.convention;
       try {
-        const DiscreteNoise noise = convert_noise(present, convert, "noise terms fitted by sigmatau analyze");
+        const DiscreteNoise noise = convert_fit(*present, convert, "noise terms fitted by sigmatau analyze");
+        // The fit's and the data checks' warnings are already in `warnings`; the rate is new.
+        if (!noise.rate_note.empty()) warnings.push_back(noise.rate_note);
         const std::string label = rate_label(rate);
         const std::pair<ExportFormat, std::string> kFiles[] = {
             {ExportFormat::json, "filter_" + label + ".json"},

@@ -13,6 +13,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -88,6 +89,45 @@ Eigen::Matrix3d scaled(const Eigen::Vector3d& sigma, const Eigen::Matrix3d& corr
 }
 
 bool uniform(const Eigen::Vector3d& v) { return v(0) == v(1) && v(1) == v(2); }
+
+/// "95 %", "68.3 %" for a level in (0, 1); "" when unknown (0).
+std::string level_text(double confidence) {
+  if (!(confidence > 0 && confidence < 1)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g %% ", 100 * confidence);
+  return text;
+}
+
+/// "axis y" / "axes x, z" for the flagged axes; "" when none.
+std::string axes_text(const std::array<bool, 3>& flagged) {
+  std::string list;
+  int count = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (!flagged[static_cast<std::size_t>(a)]) continue;
+    list += std::string(count++ ? ", " : "") + static_cast<char>('x' + a);
+  }
+  return count == 0 ? "" : (count == 1 ? "axis " : "axes ") + list;
+}
+
+/// What the bias written rests on when a fit's upper bound stands in for a term it did not
+/// detect: only the term the bias is made from (K for a random walk from K, B for one from a
+/// bias stability or a Gauss-Markov), at its level. "" when that term is measured everywhere.
+std::string bound_text(const TriadNoise& triad, BiasSource source) {
+  if (source == BiasSource::gauss_markov) return "";
+  const bool k = source == BiasSource::rate_random_walk;
+  const std::string term = k ? "K" : "B";
+  const std::string level = level_text(triad.bound_confidence);
+  if (triad.no_bias_term_detected) {
+    return std::string("neither B nor K detected on any axis: ") + term + "'s " + level +
+           "upper bound used on every axis" +
+           (k ? " (B's bound plays no part in a random walk from K)"
+              : " (K's bound plays no part here)");
+  }
+  const std::string axes =
+      axes_text(k ? triad.rate_random_walk_is_bound : triad.bias_instability_is_bound);
+  if (axes.empty()) return "";
+  return term + " on " + axes + ": not detected, its " + level + "upper bound used";
+}
 
 }  // namespace
 
@@ -190,7 +230,6 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
   const std::string sensor(to_string(triad.sensor));
   TriadDiscrete out;
   out.bias_origin = triad.bias_origin;
-  out.bias_from_upper_bound = triad.bias_from_upper_bound;
   out.sensor = triad.sensor;
 
   bool any_white = false;
@@ -230,6 +269,28 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
     b.phi.setOnes();
     b.tau_c_s.setZero();
     b.sigma.setZero();
+    if (const std::string bound = bound_text(triad, *source); !bound.empty()) {
+      out.bias_origin += (out.bias_origin.empty() ? "" : "; ") + bound;
+      out.bias_from_upper_bound = true;
+    }
+    // Gauss-Markov from B: tau_min given for all axes, else each axis's measured ADEV minimum
+    // (an axis without one takes the shortest measured: the larger per-step drive), else T_ref.
+    std::optional<double> shortest_measured;
+    std::string unmeasured;
+    for (int i = 0; i < 3; ++i) {
+      const auto& m = triad.adev_minimum_tau_s[static_cast<std::size_t>(i)];
+      if (m && *m > 0 && std::isfinite(*m)) {
+        shortest_measured = std::min(shortest_measured.value_or(*m), *m);
+      } else {
+        unmeasured += std::string(unmeasured.empty() ? "" : ", ") + static_cast<char>('x' + i);
+      }
+    }
+    const auto tau_min_of = [&](int i) {
+      if (options.tau_min_s) return *options.tau_min_s;
+      const auto& m = triad.adev_minimum_tau_s[static_cast<std::size_t>(i)];
+      if (m && *m > 0 && std::isfinite(*m)) return *m;
+      return shortest_measured.value_or(options.t_ref_s);
+    };
     for (int i = 0; i < 3; ++i) {
       const NoiseTerms& t = triad.axes[static_cast<std::size_t>(i)];
       const auto missing = [&](const char* what) {
@@ -260,10 +321,10 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
           tau_c = t.gauss_markov->tau_c_s;
         } else {
           if (!t.bias_instability) missing("bias instability B");
-          const double tau_min = options.tau_min_s.value_or(options.t_ref_s);
+          const double tau_min = tau_min_of(i);
           sigma = kFlickerFloorFactor * *t.bias_instability / kGaussMarkovPeakFactor;
           tau_c = tau_min / kGaussMarkovPeakTau;
-          b.tau_min_s = tau_min;
+          b.tau_min_s(i) = tau_min;
         }
         if (!(sigma > 0) || !(tau_c > 0)) {
           throw Error(sensor + ": Gauss-Markov sigma and T_c must be > 0");
@@ -278,6 +339,18 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
       }
       b.sigma_per_step(i) = std::sqrt(b.variance_per_step(i));
     }
+    if (b.model == BiasModel::gauss_markov && b.source == BiasSource::bias_stability) {
+      if (options.tau_min_s) {
+        b.tau_min_origin = "given (convert --tau-min)";
+      } else if (shortest_measured) {
+        b.tau_min_origin = "the tau of the ADEV minimum the fit measured";
+        if (!unmeasured.empty()) {
+          b.tau_min_origin += " (none on " + unmeasured + ": the shortest measured used there)";
+        }
+      } else {
+        b.tau_min_origin = "T_ref (convert --tref): no tau of the ADEV minimum measured or given";
+      }
+    }
     b.q = scaled(b.sigma_per_step, triad.bias_correlation);
     if (b.model == BiasModel::random_walk && b.source == BiasSource::bias_stability &&
         triad.rate_random_walk_bound && *triad.rate_random_walk_bound > 0) {
@@ -287,7 +360,7 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
         char text[300];
         std::snprintf(text, sizeof text,
                       "the fit bounds K below %.4g %s (largest axis), and this rule-of-thumb K is "
-                      "%.3g times that: conservative (a longer --tref lowers it)",
+                      "%.3g times that: conservative (a longer T_ref, convert --tref, lowers it)",
                       bound, rw_unit(triad.sensor).c_str(), ratio);
         out.bias_note = text;
       }
@@ -338,7 +411,7 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
   }
   if (r.bias) {
     const auto& b = *r.bias;
-    if (!triad.bias_origin.empty()) o << "  bias: " << triad.bias_origin << "\n";
+    if (!r.bias_origin.empty()) o << "  bias: " << r.bias_origin << "\n";
     if (!r.bias_note.empty()) o << "  bias: " << r.bias_note << "\n";
     for (int i : axes_of(b.variance_per_step)) {
       const NoiseTerms& t = triad.axes[static_cast<std::size_t>(i)];
@@ -369,8 +442,7 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
           o << p << "Gauss-Markov matched at its ADEV peak (0.6174 sigma at 1.892 T_c) to the "
                     "floor B_ds = "
             << num(bds) << " " << u << in_deg(s, bds * 3600, "deg/h")
-            << " at tau_min = " << num(b.tau_min_s) << " s"
-            << (options.tau_min_s ? "" : " (T_ref; no tau_min given)") << "\n"
+            << " at tau_min = " << num(b.tau_min_s(i)) << " s (" << b.tau_min_origin << ")\n"
             << p << "sigma = B_ds / 0.6174 = " << num(b.sigma(i) / f) << " " << u
             << ", T_c = tau_min / 1.892 = " << num(b.tau_c_s(i)) << " s\n";
         } else {

@@ -45,14 +45,30 @@ double worst(const Eigen::Vector3d& v, std::string& notes, const std::string& wh
   return v.maxCoeff();
 }
 
+/// "327.7 s" on every axis, or "327.7 s (x), 327.7 s (y), 163.8 s (z)".
+std::string per_axis_seconds(const Eigen::Vector3d& v) {
+  if (uniform(v)) return num(v(0)) + " s";
+  return num(v(0)) + " s (x), " + num(v(1)) + " s (y), " + num(v(2)) + " s (z)";
+}
+
+/// The header's notes (DiscreteNoise::notes and rate_note), in order.
+std::vector<std::string> notes_of(const DiscreteNoise& n) {
+  std::vector<std::string> notes = n.notes;
+  if (!n.rate_note.empty()) notes.push_back(n.rate_note);
+  return notes;
+}
+
 std::string header(const DiscreteNoise& n, const std::string& format_line) {
   std::ostringstream o;
   o << "# " << format_line << "\n";
+  // First, before any number: what makes the values untrustworthy (a rejected fit, units).
+  for (const auto& w : n.warnings) o << "# WARNING: " << w << "\n";
   o << "# written by sigmatau from " << (n.source.empty() ? "given noise terms" : n.source)
     << "\n";
   o << "# IMU rate " << num(n.options.rate_hz) << " Hz; density convention "
     << to_string(n.options.convention) << "; inflation factor " << num(n.options.inflate)
     << "; bias model " << to_string(n.options.bias_model) << "\n";
+  for (const auto& note : notes_of(n)) o << "# note: " << note << "\n";
   for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
     // An upper bound standing in for a term the fit did not detect is not a measurement.
     if (t && t->bias && t->bias_from_upper_bound) {
@@ -63,11 +79,12 @@ std::string header(const DiscreteNoise& n, const std::string& format_line) {
     if (t->bias->model == BiasModel::random_walk) {
       o << "# " << sensor << " bias random walk from the bias stability B by the rule of thumb "
         << "K = B_ds / sqrt(T_ref), B_ds the bias stability (ADEV floor 0.664 B), T_ref = " << num(t->bias->t_ref_s)
-        << " s (--tref): not a measured K\n";
+        << " s (convert --tref): not a measured K\n";
       if (!t->bias_note.empty()) o << "# " << sensor << " bias: " << t->bias_note << "\n";
     } else {
-      o << "# " << sensor << " bias Gauss-Markov from the bias stability B with its ADEV minimum "
-        << "at tau = " << num(t->bias->tau_min_s) << " s (--tau-min)\n";
+      o << "# " << sensor << " bias Gauss-Markov from the bias stability B, matched at the ADEV "
+        << "minimum at tau = " << per_axis_seconds(t->bias->tau_min_s) << ": "
+        << t->bias->tau_min_origin << "\n";
     }
   }
   return o.str();
@@ -272,6 +289,10 @@ std::string json(const DiscreteNoise& n) {
   doc["density_convention"] = std::string(to_string(n.options.convention));
   doc["inflate"] = n.options.inflate;
   doc["source"] = n.source;
+  // The text formats' header comments: a rejected fit, implausible units, the method, terms
+  // left out, a rate above the log's.
+  if (!n.warnings.empty()) doc["warnings"] = n.warnings;
+  if (const auto notes = notes_of(n); !notes.empty()) doc["notes"] = notes;
   for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
     if (!t) continue;
     // One unit per field: the sample's unit, its square, and the density units.
@@ -302,6 +323,7 @@ std::string json(const DiscreteNoise& n) {
                                         {"sigma_per_step", unit},
                                         {"random_walk_density", rate_unit + "/sqrt(Hz)"},
                                         {"Q", squared}}}};
+      if (t->bias_from_upper_bound) bias["origin"] = t->bias_origin;
       if (b.model == BiasModel::random_walk) {
         if (b.source == BiasSource::bias_stability) bias["t_ref_s"] = b.t_ref_s;
       } else {
@@ -310,7 +332,10 @@ std::string json(const DiscreteNoise& n) {
         bias["sigma"] = vector_or_scalar(b.sigma);
         bias["units"]["sigma"] = unit;
         bias["units"]["tau_c_s"] = "s";
-        if (b.source == BiasSource::bias_stability) bias["tau_min_s"] = b.tau_min_s;
+        if (b.source == BiasSource::bias_stability) {
+          bias["tau_min_s"] = vector_or_scalar(b.tau_min_s);
+          bias["tau_min_origin"] = b.tau_min_origin;
+        }
       }
       sensor["bias"] = bias;
     }

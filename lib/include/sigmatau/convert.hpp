@@ -83,6 +83,18 @@ struct TriadNoise {
   std::string bias_origin;
   /// true: on some axis a fit's upper bound stands in for a bias term it did not detect.
   bool bias_from_upper_bound = false;
+  /// Per axis x, y, z: B (bias_instability) / K (rate_random_walk) is a fit's upper bound
+  /// standing in for a term it did not detect there. The conversion names, in
+  /// TriadDiscrete::bias_origin, only the bounds of the term it uses.
+  std::array<bool, 3> bias_instability_is_bound{};
+  std::array<bool, 3> rate_random_walk_is_bound{};
+  /// The fit kept neither B nor K on any axis: both are bounds on every axis.
+  bool no_bias_term_detected = false;
+  /// Confidence level of those upper bounds (one-sided, the fit's --ci), in (0, 1); 0: unknown.
+  double bound_confidence = 0;
+  /// Per axis: the tau of the ADEV minimum the fit measured [s] (fit JSON parameters.B.tau_min_s),
+  /// the default tau_min of a Gauss-Markov bias made from B; nullopt where not measured.
+  std::array<std::optional<double>, 3> adev_minimum_tau_s;
   /// A fit that kept B but K on no axis: the largest axis's upper bound on K, against which a
   /// K made from B by the rule of thumb is compared (it can be several times the bound).
   std::optional<double> rate_random_walk_bound;
@@ -109,12 +121,39 @@ TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
 /// axis cannot be told.
 std::vector<TriadNoise> triads_from_fit_json(std::string_view json_text, const std::string& file);
 
+/// A noise-term fit result read for the filter conversion: its triads and what every filter
+/// file written from it must say about the fit it rests on.
+struct FitForFilter {
+  std::vector<TriadNoise> triads;  ///< as triads_from_fit_json
+  /// One line each: channels whose joint fit was rejected by its goodness of fit (p_value below
+  /// kMisfitPValue, fit.hpp) with p and the advice, and the data-plausibility check's unit
+  /// warnings (analyze's results.json "unit_warnings").
+  std::vector<std::string> warnings;
+  /// One line each: which method's terms are used (joint, slopes; with both, which and why) and
+  /// terms the fit kept that no filter file carries (rate ramp R, quantization Q), with values.
+  std::vector<std::string> notes;
+  /// The log's sample rate [Hz] when the result records it (results.json / fit JSON
+  /// "input": {"rate_hz"}); nullopt otherwise.
+  std::optional<double> log_rate_hz;
+};
+
+/// Reads a fit result as triads_from_fit_json does, with its warnings and notes. The level of
+/// the bounds comes from the result's "confidence" (top level or "fit"), the Gauss-Markov
+/// tau_min per axis from parameters.B.tau_min_s. Throws Error as triads_from_fit_json.
+FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& file);
+
+/// The note for a filter rate above the log's sample rate (the white level is measured only up
+/// to the log's Nyquist frequency, log_rate_hz / 2), or "" when filter_rate_hz <= log_rate_hz.
+std::string rate_above_log_note(double filter_rate_hz, double log_rate_hz);
+
 /// Conversion settings.
 struct ConvertOptions {
   double rate_hz = 0;  ///< f_s [Hz], > 0
   BiasModel bias_model = BiasModel::random_walk;
   double t_ref_s = kDefaultReferenceTime;  ///< T_ref [s] for a bias stability as a random walk
-  /// tau of the ADEV minimum [s] for a bias stability as a GM; nullopt: T_ref is used.
+  /// tau of the ADEV minimum [s] for a bias stability as a GM, on every axis; nullopt: each
+  /// axis's TriadNoise::adev_minimum_tau_s (an axis without one takes the shortest measured on
+  /// the others), else T_ref.
   std::optional<double> tau_min_s;
   double inflate = 1;  ///< F >= 1 is usual; must be > 0
   /// Recorded in the outputs (the conversion of ND to N happens when the TriadNoise is built).
@@ -150,16 +189,22 @@ struct BiasDiscrete {
   Eigen::Vector3d tau_c_s;  ///< gm: T_c [s]; rw: 0
   Eigen::Vector3d sigma;    ///< gm: stationary sigma [unit]; rw: 0
   double t_ref_s = 0;       ///< T_ref used (source bias_stability, rw), else 0
-  double tau_min_s = 0;     ///< tau_min used (source bias_stability, gm), else 0
+  /// Per axis: tau_min [s] used (source bias_stability, gm), else 0.
+  Eigen::Vector3d tau_min_s = Eigen::Vector3d::Zero();
+  /// Where tau_min came from (source bias_stability, gm), for the files' headers, e.g.
+  /// "given (convert --tau-min)"; "" otherwise.
+  std::string tau_min_origin;
   Eigen::Matrix3d q;        ///< S C S, S = diag(sigma_per_step), C = bias_correlation
 };
 
 /// One converted triad.
 struct TriadDiscrete {
   Sensor sensor = Sensor::gyro;
-  /// Where the bias came from (TriadNoise::bias_origin, bias_from_upper_bound), for the files'
-  /// headers: a term the fit did not detect, written as its upper bound, is said so.
+  /// Where the bias came from (TriadNoise::bias_origin), for the files' headers, with the axes
+  /// where the term the bias is made from (K for a random walk from K, B otherwise) is a fit's
+  /// upper bound, at its level ("K on axis y: not detected, its 95 % upper bound used").
   std::string bias_origin;
+  /// true: the bias written rests on such a bound on some axis.
   bool bias_from_upper_bound = false;
   /// A rule-of-thumb K above the fit's own upper bound on K: says by how much ("" otherwise).
   std::string bias_note;
@@ -174,6 +219,13 @@ struct DiscreteNoise {
   std::optional<TriadDiscrete> accel;
   std::string source;   ///< what was converted ("data sheet specs/tdk_mpu6050.yaml", ...)
   std::string explain;  ///< every step with its numbers (for --explain)
+  /// Said at the top of every file ("# WARNING: ...", JSON "warnings"): what makes the values
+  /// untrustworthy (FitForFilter::warnings).
+  std::vector<std::string> warnings;
+  /// Said in every file's header ("# note: ...", JSON "notes"): FitForFilter::notes.
+  std::vector<std::string> notes;
+  /// rate_above_log_note for this rate, "" when none ("# note: ...", JSON "notes").
+  std::string rate_note;
   const TriadDiscrete* triad(Sensor sensor) const;
 };
 
@@ -185,6 +237,11 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
 /// Converts each triad (at most one gyro and one accel) and writes the explanation.
 DiscreteNoise convert_noise(const std::vector<TriadNoise>& triads, const ConvertOptions& options,
                             std::string source);
+
+/// convert_noise on a fit result's triads, carrying its warnings and notes into the result, and
+/// the rate note when the fit records the log's rate and options.rate_hz is above it.
+DiscreteNoise convert_fit(const FitForFilter& fit, const ConvertOptions& options,
+                          std::string source);
 
 /// The explanation of one triad's conversion: inputs in SI (and deg for gyros), each formula
 /// with its numbers, the results.
