@@ -23,6 +23,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
+#include "scratch_dir.hpp"
 
 extern char** environ;
 
@@ -56,36 +57,7 @@ std::string terminal_for(PlotFormat format) {
   return "svg";
 }
 
-/// A private scratch directory, removed with everything in it when this object goes. The
-/// directory and every file named through file() are also on the interrupt clean-up table
-/// (InterruptCleanup), so a plot interrupted by a signal leaves nothing in $TMPDIR.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "sigmatau-plot-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw Error("cannot create a temporary directory for plots");
-    path_ = pattern;
-    tracked_.push_back(std::make_unique<InterruptCleanup>(path_));
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-
-  /// The path of a file named `name` in the directory, tracked for an interrupt (tracked
-  /// before anything creates it).
-  std::filesystem::path file(const std::string& name) {
-    auto path = path_ / name;
-    tracked_.push_back(std::make_unique<InterruptCleanup>(path));
-    return path;
-  }
-
- private:
-  std::filesystem::path path_;
-  std::vector<std::unique_ptr<InterruptCleanup>> tracked_;
-};
+using detail::ScratchDir;
 
 /// The palette for curves without their own colour (colour-blind-safe "tab10" order).
 constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",

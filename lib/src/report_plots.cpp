@@ -1,7 +1,5 @@
 // The report's plots: results.json -> ADEV, PSD, dynamic ADEV and compliance plots (plot.hpp),
 // in data-sheet display units, rendered with gnuplot (report_common.hpp, render_plots).
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +8,7 @@
 #include <set>
 
 #include "report_common.hpp"
+#include "scratch_dir.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/plot.hpp"
 #include "sigmatau/units.hpp"
@@ -257,9 +256,10 @@ PlotSet render_plots(const json& results, const ReportOptions& options) {
     set.warnings.push_back("gnuplot not found: plots left out (install it with: apt-get install gnuplot-nox)");
     return set;
   }
-  char pattern[] = "/tmp/sigmatau-report-XXXXXX";
-  if (!::mkdtemp(pattern)) throw Error("cannot create a temporary directory for plots");
-  const std::filesystem::path scratch = pattern;
+  // In $TMPDIR, removed on any exception (a json one from an odd results.json too) and on a
+  // signal.
+  detail::ScratchDir scratch_dir("sigmatau-report-");
+  const std::filesystem::path& scratch = scratch_dir.path();
   const std::string ext = options.plot_format == PlotFormat::svg   ? ".svg"
                           : options.plot_format == PlotFormat::png ? ".png"
                                                                    : ".pdf";
@@ -302,8 +302,6 @@ PlotSet render_plots(const json& results, const ReportOptions& options) {
       render("compliance", [&](const std::filesystem::path& p) { render_compliance_plot(chart, p, true); });
     }
   }
-  std::error_code ec;
-  std::filesystem::remove_all(scratch, ec);
   return set;
 }
 
