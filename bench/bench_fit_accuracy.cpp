@@ -7,7 +7,9 @@
 // holds about a parameter once the model is known, so the cost of selecting it shows. A plain
 // program (not Google Benchmark): it measures error and speed together. Usage:
 //   bench_fit_accuracy OUT_PREFIX [SEEDS=200] [PROFILES=mems_gyro,tactical_gyro,consumer_accel,
-//                      weak_flicker_gyro,flicker_accel,ramp_gyro] [TAUS=octave] [FIRST_SEED=1]
+//                      weak_flicker_gyro,flicker_accel,ramp_gyro,quantized_gyro,short_gyro_5min,
+//                      short_gyro_30min] [TAUS=octave] [FIRST_SEED=1]
+// (default: every profile; the short_gyro_* profiles are bench/results_fit_short_logs.md's)
 // (TAUS: a --taus spec: octave, many:P, ...; FIRST_SEED: seeds FIRST_SEED .. FIRST_SEED+SEEDS-1,
 // so that exploration runs can use seeds the reported table does not) writes OUT_PREFIX.md,
 // OUT_PREFIX.csv and OUT_PREFIX.channels.csv (every channel's estimates, one row per method and
