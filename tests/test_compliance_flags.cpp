@@ -302,8 +302,12 @@ TEST_CASE("the ADEV plot keys every fitted term once, whichever channel keeps it
         {{"name", "gy"}, {"sensor", "gyro"}, {"allan", allan}}}},
       {"fit",
        {{"channels",
-         {{{"name", "gx"}, {"model_adev", model}, {"terms_adev", {{"N", white_line}}}},
+         {{{"name", "gx"},
+           {"parameters", nlohmann::json::object()},
+           {"model_adev", model},
+           {"terms_adev", {{"N", white_line}}}},
           {{"name", "gy"},
+           {"parameters", nlohmann::json::object()},
            {"model_adev", model},
            {"terms_adev", {{"N", white_line}, {"K", walk_line}}}}}}}}};
   ReportOptions options;

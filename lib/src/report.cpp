@@ -246,7 +246,9 @@ std::vector<std::pair<std::string, std::string>> parameter_cells(const json& res
   const bool spec = results.contains("compliance") && !results["compliance"].is_null();
   for (const auto& [key, unit] : terms) {
     std::string text;
-    if (fit && (*fit)["parameters"].contains(key)) text = parameter_text((*fit)["parameters"][key], unit);
+    if (fit && fit->contains("parameters") && (*fit)["parameters"].contains(key)) {
+      text = parameter_text((*fit)["parameters"][key], unit);
+    }
     // With a data sheet, B also as the floor the sheet prints, so the number beside the verdict
     // is the one compared (a coefficient of 12.3 deg/h read as 54 % over a sheet's 8 deg/h).
     if (spec && std::string(key) == "B" && !text.empty()) text += floor_text((*fit)["parameters"]["B"], unit);
