@@ -325,6 +325,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
           {NoiseTerm::white, MeasuredQuantity::white_noise},
           {NoiseTerm::bias_instability, MeasuredQuantity::bias_instability},
           {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
+      const std::size_t first_measured = measured.size();
       for (const auto& [term, quantity] : kMeasured) {
         const auto& p = joint.parameter(term);
         if (p.in_model) {
@@ -338,6 +339,8 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
                               .upper_bound = p.upper_bound});
         }
       }
+      // A rejected fit (p below kMisfitPValue) marks the verdicts built on it.
+      for (std::size_t i = first_measured; i < measured.size(); ++i) measured[i].fit_p_value = joint.p_value;
     } catch (const Error& e) {
       warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");
     }
