@@ -200,7 +200,8 @@ bool rise_without_floor(const ChannelFit& fit) {
   bool rise = false;
   for (const auto& p : fit.parameters) {
     if (p.term == NoiseTerm::bias_instability && p.in_model && p.leading_points > 0) return false;
-    if ((p.term == NoiseTerm::rate_random_walk || p.term == NoiseTerm::rate_ramp) && p.in_model) {
+    if ((p.term == NoiseTerm::rate_random_walk || p.term == NoiseTerm::rate_ramp) && p.in_model &&
+        p.leading_points <= kShortLogRisePoints) {
       rise = true;
     }
   }
