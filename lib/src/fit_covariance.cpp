@@ -29,8 +29,8 @@
 // lag takes O(log N) evaluations with a discrete Gauss rule between c's breakpoints: exact up to
 // rounding for Q, N, K and the ramp (3e-15 relative at m = 2^22), within 3e-14 of the direct sum
 // over every lag for B and GM (tests/test_fit_covariance.cpp), O(1) memory per pair. The previous
-// FFT of length 8 (m_a + m_b) (kept as a reference, fit_covariance_fft.cpp) needed ~48 P bytes
-// (3.2 GiB at m = 2^22) and truncated the flicker tail beyond 4 (m_a + m_b), which moved B's
+// FFT of length 8 (m_a + m_b) (kept as a test and bench reference in
+// tests/support/fit_covariance_fft.cpp) needed ~48 P bytes (3.2 GiB at m = 2^22) and truncated the flicker tail beyond 4 (m_a + m_b), which moved B's
 // sums by up to ~1e-2 (bench/results_fit_covariance.md).
 #include <algorithm>
 #include <cmath>
