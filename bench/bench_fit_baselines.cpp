@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "baseline_rules.hpp"
+#include "fit_profiles.hpp"
 #include "sigmatau/allan.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/fit.hpp"
@@ -35,28 +36,6 @@ namespace {
 using namespace sigmatau;
 using namespace sigmatau::bench;
 using Clock = std::chrono::steady_clock;
-
-struct Profile {
-  std::string name;
-  std::string description;
-  Sensor sensor;
-  double rate_hz;
-  double hours;
-  std::string model;  // parse_noise_terms text
-};
-
-// The first three profiles of bench_fit_accuracy, same truths.
-const std::vector<Profile>& profiles() {
-  static const std::vector<Profile> p{
-      {"mems_gyro", "MEMS gyro, 100 Hz, 2 h", Sensor::gyro, 100, 2,
-       "N=0.15 deg/sqrt(h), B=3 deg/h, K=15 deg/h/sqrt(h)"},
-      {"tactical_gyro", "tactical gyro, 200 Hz, 2 h", Sensor::gyro, 200, 2,
-       "Q=1 arcsec, N=0.02 deg/sqrt(h), B=0.3 deg/h"},
-      {"consumer_accel", "consumer MEMS accelerometer, 100 Hz, 2 h", Sensor::accel, 100, 2,
-       "N=150 ug/sqrt(Hz), B=40 ug, K=5e-5 m/s^2.5"},
-  };
-  return p;
-}
 
 // imu_utils works in deg/h for gyros, with 57.3 deg per rad (allan_gyr.cpp, pushRadPerSec).
 constexpr double kImuUtilsGyroUnit = 57.3 * 3600;
@@ -100,15 +79,6 @@ double tool_value(const BaselineEstimate& e, Method m, NoiseTerm term) {
     case NoiseTerm::rate_random_walk:
       return m == Method::imu_utils_yaml ? std::nan("") : e.rate_random_walk;
     default: return std::nan("");
-  }
-}
-
-double truth_of(const NoiseTerms& t, NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::white: return t.white.value_or(0);
-    case NoiseTerm::bias_instability: return t.bias_instability.value_or(0);
-    case NoiseTerm::rate_random_walk: return t.rate_random_walk.value_or(0);
-    default: return 0;
   }
 }
 
@@ -181,8 +151,10 @@ int main(int argc, char** argv) {
   }
   const std::string prefix = argv[1];
   const int seeds = argc > 2 ? std::stoi(argv[2]) : 200;
-  std::vector<std::string> wanted;
+  // By default the first three profiles of bench_fit_accuracy (fit_profiles.hpp), same truths.
+  std::vector<std::string> wanted{"mems_gyro", "tactical_gyro", "consumer_accel"};
   if (argc > 3) {
+    wanted.clear();
     std::stringstream ss(argv[3]);
     for (std::string item; std::getline(ss, item, ',');) wanted.push_back(item);
   }
