@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_stats.hpp"
 #include "ros1_bag_writer.hpp"
 #include "ros2_bag_writer.hpp"
 #include "sigmatau/log_reader.hpp"
@@ -44,6 +45,8 @@ using sigmatau::test::Ros1Imu;
 namespace t2 = sigmatau::test;
 
 namespace {
+
+using sigmatau::bench::median;
 
 constexpr std::int64_t kStartNs = 1700000000000000000;
 constexpr std::int64_t kPeriodNs = 5000000;  // 200 Hz
@@ -198,12 +201,6 @@ Run run_child(const std::string& self, const std::string& path, bool binary) {
     throw std::runtime_error("reading " + path + ": unexpected child output " + out);
   }
   return r;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "baseline_rules.hpp"
+#include "bench_stats.hpp"
 #include "fit_profiles.hpp"
 #include "sigmatau/allan.hpp"
 #include "sigmatau/allan_curve.hpp"
@@ -93,26 +94,6 @@ struct MethodTally {
   std::vector<double> curve_ms, rule_ms;
   std::vector<double> gyr_w_over_k;  // imu_utils yaml: gyr_w / K (see the results' note)
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/// Distribution-free 95 % interval of the median (order statistics n/2 -+ 1.96 sqrt(n)/2, the
-/// normal approximation of Binomial(n, 1/2), good to a rank for n >= 100).
-std::pair<double, double> median_interval(std::vector<double> v) {
-  if (v.size() < 2) return {std::nan(""), std::nan("")};
-  std::sort(v.begin(), v.end());
-  const double n = static_cast<double>(v.size());
-  const double half_width = 1.96 * std::sqrt(n) / 2;
-  const auto rank = [&](double r) {
-    return v[static_cast<std::size_t>(std::clamp(r, 0.0, n - 1))];
-  };
-  return {rank(std::floor(n / 2 - half_width) - 1), rank(std::ceil(n / 2 + half_width) - 1)};
-}
 
 double ms_since(Clock::time_point t0) {
   return 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();

@@ -33,6 +33,7 @@
 
 #include <Eigen/Dense>
 
+#include "bench_stats.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/noise_model.hpp"
@@ -40,6 +41,8 @@
 #include "sigmatau/taus.hpp"
 
 namespace {
+
+using sigmatau::bench::median;
 
 using namespace sigmatau;
 using Clock = std::chrono::steady_clock;
@@ -192,13 +195,6 @@ double k_relative_bound(const Eigen::Matrix3d& info, const std::array<double, 3>
   }
   const double var_k2 = sub.inverse()(m - 1, m - 1);  // K^2 is listed last
   return std::sqrt(var_k2) / (2 * theta[2]);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace

@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_stats.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/allan_stream.hpp"
@@ -65,6 +66,8 @@
 using namespace sigmatau;
 
 namespace {
+
+using sigmatau::bench::median;
 
 constexpr double kTau0 = 0.01;                // 100 Hz
 constexpr std::size_t kBlock = 1 << 16;       // samples generated per block
@@ -359,13 +362,6 @@ Measurement in_child(F what) {
     std::exit(3);
   }
   return parse(text);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t k = v.size() / 2;
-  return v.size() % 2 ? v[k] : 0.5 * (v[k - 1] + v[k]);
 }
 
 struct Row {
