@@ -5,16 +5,7 @@ set(lh_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_log_hints)
 file(MAKE_DIRECTORY ${lh_dir})
 
 # 10 Hz stamps in ms, rows 100..102 missing: one gap of 0.4 s before the row stamped 10300 ms.
-set(rows "t,gx\n")
-foreach(i RANGE 299)
-  if(i GREATER_EQUAL 100 AND i LESS_EQUAL 102)
-    continue()
-  endif()
-  math(EXPR t_ms "${i} * 100")
-  math(EXPR v "(${i} * 7919) % 13")
-  string(APPEND rows "${t_ms},${v}\n")
-endforeach()
-file(WRITE ${lh_dir}/gap.csv "${rows}")
+sigmatau_write_gapped_log(${lh_dir}/gap.csv 300 100 102)
 # Line 1 is the header, so the row after the gap (i = 103, the 101st data row) is on line 102.
 sigmatau_cli_test(NAME cli_log_gaps_report_summary EXIT 0
   STDERR "--gaps report: 1 time stamp gap \\(> 1\\.5 intervals\\), the largest 0\\.4 s before line 102; analysed as if contiguous"

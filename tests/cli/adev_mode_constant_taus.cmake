@@ -82,16 +82,7 @@ sigmatau_cli_test(NAME cli_adev_taus_none_reaches_stream EXIT 2
   ARGS adev ${mct_white} --time-column t --columns gx --taus 450 --mode stream)
 # --gaps split: the longest segment bounds the taus (1990 rows: OADEV to m = 497, TOTDEV to
 # m = 995): the same per-statistic taus.
-set(rows "t,gx\n")
-foreach(i RANGE 2999)
-  if(i GREATER_EQUAL 1000 AND i LESS 1010)
-    continue()
-  endif()
-  math(EXPR t_ms "${i} * 100")
-  math(EXPR v "(${i} * 7919) % 13")
-  string(APPEND rows "${t_ms},${v}\n")
-endforeach()
-file(WRITE ${mct_dir}/split.csv "${rows}")
+sigmatau_write_gapped_log(${mct_dir}/split.csv 3000 1000 1009)
 sigmatau_cli_test(NAME cli_adev_taus_per_statistic_split EXIT 0
   STDOUT "gx,totdev,,6\\.000000e\\+01,600,"
   STDERR "oadev skips tau 60 s: its longest on this log is 49\\.7 s \\(m = 497\\)"
