@@ -18,19 +18,7 @@ function(sigmatau_output_special_test name script)
   set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120)
 endfunction()
 
-set(special_prologue [=[
-set -u
-S=$1; W=$2; LOG=$3
-rm -rf "$W"; mkdir -p "$W" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
-run() { "$S" "$@" >"$W/.stdout" 2>"$W/.stderr"; rc=$?; err=$(cat "$W/.stderr"); }
-expect() {  # expect RC STDERR_REGEX
-  [ "$rc" = "$1" ] || fail "exit $rc, expected $1; stderr: $err"
-  if [ -n "$2" ]; then
-    printf '%s' "$err" | grep -Eq -- "$2" || fail "stderr does not match '$2': $err"
-  fi
-  echo "ok: exit $rc, stderr matches '$2'"
-}
+string(CONCAT special_prologue "${sigmatau_cli_shell_prologue}" [=[
 type_is() {  # type_is PATH TYPE (as stat -c %F names it)
   t=$(stat -c %F "$1" 2>&1); [ "$t" = "$2" ] || fail "$1 is a $t, expected a $2"
 }

@@ -16,21 +16,10 @@ function(sigmatau_robust_test name script)
   set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120)
 endfunction()
 
-# Common prologue: $1 CLI, $2 a fresh work directory, $3 the 2-channel log; fail() and
-# expect_rc() helpers; `empty DIR` checks that DIR holds nothing (no partial or temporary file).
-set(robust_prologue [=[
-set -u
-S=$1; W=$2; LOG=$3; shift 3
-rm -rf "$W"; mkdir -p "$W" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
-run() { "$S" "$@" >"$W/.stdout" 2>"$W/.stderr"; rc=$?; err=$(cat "$W/.stderr"); }
-expect() {  # expect RC STDERR_REGEX
-  [ "$rc" = "$1" ] || fail "exit $rc, expected $1; stderr: $err"
-  if [ -n "$2" ]; then
-    printf '%s' "$err" | grep -Eq -- "$2" || fail "stderr does not match '$2': $err"
-  fi
-  echo "ok: exit $rc, stderr matches '$2'"
-}
+# Prologue: sigmatau_cli_shell_prologue (tests/CMakeLists.txt: $1 CLI, $2 a fresh work
+# directory, $3 the 2-channel log; fail, run, expect), and `empty DIR`, which checks that DIR
+# holds nothing (no partial or temporary file).
+string(CONCAT robust_prologue "${sigmatau_cli_shell_prologue}" [=[
 empty() { left=$(ls -A "$1"); [ -z "$left" ] || fail "$1 is not empty: $left"; }
 ]=])
 
