@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "channel_units.hpp"
@@ -138,12 +139,17 @@ std::vector<std::string> channel_warnings(const Channel& c) {
   return out;
 }
 
-std::string render_json(const std::string& input, const std::vector<Channel>& channels,
+/// `log_rate_hz`: the sample rate [Hz] of the log behind the curves, written as "input":
+/// {"rate_hz"} as adev and analyze write it, so that `convert --fit` can say when a filter rate
+/// is above it (rate_above_log_note, convert.hpp); left out when unknown.
+std::string render_json(const std::string& input, std::optional<double> log_rate_hz,
+                        const std::vector<Channel>& channels,
                         const std::vector<TriadSummary>& triads, double ci) {
   nlohmann::json doc;
   doc["tool"] = "sigmatau";
   doc["version"] = SIGMATAU_VERSION;
   doc["input"] = {{"path", input}};
+  if (log_rate_hz) doc["input"]["rate_hz"] = *log_rate_hz;
   doc["confidence"] = ci;
   doc["channels"] = nlohmann::json::array();
   for (const auto& c : channels) {
@@ -295,6 +301,19 @@ void check_unit_names_a_sensor(const LogArguments& args) {
               ") is neither an angular rate nor an acceleration");
 }
 
+/// The sample rate [Hz] a saved adev result records ("input": {"rate_hz"}, which read_adev_json
+/// requires), taken as written rather than as 1 / tau0 so that fit's JSON repeats it exactly;
+/// nullopt when it is not a number > 0.
+std::optional<double> saved_rate_hz(const std::string& text) {
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (!doc.is_object() || !doc.contains("input") || !doc["input"].is_object()) return std::nullopt;
+  const nlohmann::json& input = doc["input"];
+  if (!input.contains("rate_hz") || !input["rate_hz"].is_number()) return std::nullopt;
+  const double rate_hz = input["rate_hz"].get<double>();
+  if (!(rate_hz > 0)) return std::nullopt;
+  return rate_hz;
+}
+
 void warn_constant(const std::string& input, const std::string& channel) {
   std::cerr << "sigmatau: warning: " << input << ": "
             << constant_channel_text(channel, "every OADEV value is 0") << "; left out of the fit\n";
@@ -318,6 +337,7 @@ struct LogCurves {
   DataKind kind = DataKind::rate;
   std::vector<AllanCurve> curves;
   CurveSource source;
+  double rate_hz = 0;  ///< the log's sample rate [Hz] (given or from its time stamps)
 };
 
 LogCurves oadev_in_memory(const LogArguments& log_args, unsigned threads) {
@@ -335,6 +355,7 @@ LogCurves oadev_in_memory(const LogArguments& log_args, unsigned threads) {
     out.curves.push_back(std::move(curve.front()));
   }
   out.source = CurveSource{series.front().tau0_s(), series.front().size(), 0};
+  out.rate_hz = loaded.rate_hz;
   return out;
 }
 
@@ -371,6 +392,7 @@ LogCurves oadev_out_of_core(const LogArguments& log_args, unsigned threads) {
   // N phase points: one more than the samples for rate and increment input.
   const std::int64_t points = unit.kind == DataKind::phase ? result.samples : result.samples + 1;
   out.source = CurveSource{1.0 / result.rate_hz, points, 0};
+  out.rate_hz = result.rate_hz;
   return out;
 }
 
@@ -391,8 +413,11 @@ void run_fit(const FitArguments& args) {
   if (!args.output.empty()) check_can_write(args.output, args.force);
 
   std::vector<Channel> channels;
+  std::optional<double> log_rate_hz;
   if (looks_like_json(sniff(args.log.input))) {
-    const auto saved_curves = read_adev_json(read_text_file(args.log.input), args.log.input);
+    const std::string saved_text = read_text_file(args.log.input);
+    const auto saved_curves = read_adev_json(saved_text, args.log.input);
+    log_rate_hz = saved_rate_hz(saved_text);
     std::string ignored = args.log_options_given;
     for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--gyro-unit", args.log.gyro_unit},
                                         {"--accel-unit", args.log.accel_unit}}) {
@@ -430,6 +455,7 @@ void run_fit(const FitArguments& args) {
     LogCurves log = exact_needs_out_of_core(args.log, memory)
                         ? oadev_out_of_core(args.log, args.threads)
                         : oadev_in_memory(args.log, args.threads);
+    log_rate_hz = log.rate_hz;
     for (std::size_t i = 0; i < log.curves.size(); ++i) {
       if (all_deviations_zero(log.curves[i])) {
         warn_constant(args.log.input, log.channel_names[i]);
@@ -468,7 +494,7 @@ void run_fit(const FitArguments& args) {
     for (const std::string& w : channel_warnings(c)) std::cerr << "sigmatau: warning: " << w << "\n";
   }
   const std::string text = args.format == "json"
-                               ? render_json(args.log.input, channels, triads, args.ci)
+                               ? render_json(args.log.input, log_rate_hz, channels, triads, args.ci)
                                : render_table(args.log.input, channels, triads, args.ci);
   if (args.output.empty()) {
     std::cout << text;
