@@ -53,21 +53,13 @@ struct Channel {
   NoiseFit fit;
 };
 
-/// SI unit (JSON) and data-sheet unit (table, display_unit) of each term, per sensor.
+/// SI unit (JSON, si_unit) and data-sheet unit (table, display_unit) of each term, per sensor.
 struct TermUnits {
-  const char* si;
+  std::string_view si;
   std::string_view sheet;
 };
 TermUnits units_of(NoiseTerm term, Sensor sensor) {
-  const bool g = sensor == Sensor::gyro;
-  const std::string_view sheet = display_unit(term, sensor);
-  switch (term) {
-    case NoiseTerm::quantization: return {g ? "rad" : "m/s", sheet};
-    case NoiseTerm::white: return {g ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)", sheet};
-    case NoiseTerm::bias_instability: return {g ? "rad/s" : "m/s^2", sheet};
-    case NoiseTerm::rate_random_walk: return {g ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)", sheet};
-    default: return {g ? "rad/s^2" : "m/s^3", sheet};
-  }
+  return {si_unit(term, sensor), display_unit(term, sensor)};
 }
 
 std::string_view term_name(NoiseTerm term, Sensor sensor) {
@@ -111,7 +103,7 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
     } else {
       j["upper_bound"] = p.upper_bound;
     }
-    j["unit"] = units_of(p.term, sensor).si;
+    j["unit"] = std::string(units_of(p.term, sensor).si);
     if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) {
       // The curve's own smallest ADEV and its tau (not the model's floor 0.664 B).
       j["tau_min_s"] = p.tau_min_s;
@@ -185,7 +177,8 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     for (const auto& e : t.entries) {
       j["parameters"][std::string(term_symbol(e.term))] = {
           {"mean", e.mean}, {"worst", e.worst}, {"worst_channel", e.worst_channel},
-          {"channels_in_model", e.channels_in_model}, {"unit", units_of(e.term, t.sensor).si}};
+          {"channels_in_model", e.channels_in_model},
+          {"unit", std::string(units_of(e.term, t.sensor).si)}};
     }
     doc["triads"].push_back(j);
   }

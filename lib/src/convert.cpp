@@ -19,6 +19,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/units.hpp"
 
@@ -36,13 +37,12 @@ std::string num(double v) {
   return buffer;
 }
 
+/// The sensor's sample unit (the glossary's "unit"), in which sigmas and variances per sample
+/// are printed.
 std::string rate_unit(Sensor s) { return s == Sensor::gyro ? "rad/s" : "m/s^2"; }
-std::string density_unit(Sensor s) {
-  return s == Sensor::gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
-}
-std::string rw_unit(Sensor s) {
-  return s == Sensor::gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
-}
+/// SI units of N and K (display_units.hpp).
+std::string density_unit(Sensor s) { return std::string(si_unit(NoiseTerm::white, s)); }
+std::string rw_unit(Sensor s) { return std::string(si_unit(NoiseTerm::rate_random_walk, s)); }
 
 /// " (= X deg/s)" for gyro values, "" for accelerometers: the numbers users know.
 std::string in_deg(Sensor s, double value_si, const char* unit, int power = 1) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
@@ -129,7 +130,7 @@ std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptio
   o << header(n, openvins ? "OpenVINS kalibr_imu_chain.yaml (continuous-time densities)"
                           : "Kalibr imu.yaml (continuous-time densities)");
   o << notes;
-  auto line = [&](const char* key, bool present, double v, const char* unit) {
+  auto line = [&](const char* key, bool present, double v, std::string_view unit) {
     if (present) {
       o << indent << key << ": " << num(v) << "  # [" << unit << "]\n";
     } else {
@@ -146,10 +147,12 @@ std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptio
     o << "rostopic: " << options.rostopic << "\n";
     o << "update_rate: " << num(n.options.rate_hz) << "  # [Hz]\n";
   }
-  line("accelerometer_noise_density", a.white, a.n, "m/s^2/sqrt(Hz)");
-  line("accelerometer_random_walk", a.bias, a.k, "m/s^3/sqrt(Hz)");
-  line("gyroscope_noise_density", g.white, g.n, "rad/s/sqrt(Hz)");
-  line("gyroscope_random_walk", g.bias, g.k, "rad/s^2/sqrt(Hz)");
+  // Kalibr's densities are the continuous-time N and K, in their SI units.
+  line("accelerometer_noise_density", a.white, a.n, si_unit(NoiseTerm::white, Sensor::accel));
+  line("accelerometer_random_walk", a.bias, a.k,
+       si_unit(NoiseTerm::rate_random_walk, Sensor::accel));
+  line("gyroscope_noise_density", g.white, g.n, si_unit(NoiseTerm::white, Sensor::gyro));
+  line("gyroscope_random_walk", g.bias, g.k, si_unit(NoiseTerm::rate_random_walk, Sensor::gyro));
   if (openvins) {
     o << "  rostopic: " << options.rostopic << "\n";
     o << "  time_offset: 0.0\n";
@@ -295,10 +298,12 @@ std::string json(const DiscreteNoise& n) {
   if (const auto notes = notes_of(n); !notes.empty()) doc["notes"] = notes;
   for (const auto* t : {n.gyro ? &*n.gyro : nullptr, n.accel ? &*n.accel : nullptr}) {
     if (!t) continue;
-    // One unit per field: the sample's unit, its square, and the density units.
+    // One unit per field: the sample's unit, its square, and the densities N and K in their SI
+    // units (si_unit).
     const std::string unit = t->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
     const std::string squared = "(" + unit + ")^2";
-    const std::string rate_unit = t->sensor == Sensor::gyro ? "rad/s^2" : "m/s^3";
+    const std::string white_unit(si_unit(NoiseTerm::white, t->sensor));
+    const std::string walk_unit(si_unit(NoiseTerm::rate_random_walk, t->sensor));
     nlohmann::json sensor = nlohmann::json::object();
     if (t->white) {
       const auto& w = *t->white;
@@ -306,7 +311,7 @@ std::string json(const DiscreteNoise& n) {
                                {"variance_per_sample", vector_or_scalar(w.variance_per_sample)},
                                {"sigma_per_sample", vector_or_scalar(w.sigma_per_sample)},
                                {"Q", matrix_json(w.q)},
-                               {"units", {{"density", unit + "/sqrt(Hz)"},
+                               {"units", {{"density", white_unit},
                                           {"variance_per_sample", squared},
                                           {"sigma_per_sample", unit},
                                           {"Q", squared}}}};
@@ -321,7 +326,7 @@ std::string json(const DiscreteNoise& n) {
                              {"Q", matrix_json(b.q)},
                              {"units", {{"variance_per_step", squared},
                                         {"sigma_per_step", unit},
-                                        {"random_walk_density", rate_unit + "/sqrt(Hz)"},
+                                        {"random_walk_density", walk_unit},
                                         {"Q", squared}}}};
       if (t->bias_from_upper_bound) bias["origin"] = t->bias_origin;
       if (b.model == BiasModel::random_walk) {

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/simulate.hpp"
@@ -42,15 +43,13 @@ nlohmann::json terms_json(const NoiseTerms& t) {
 nlohmann::json model_json(const ErrorModel& m, Sensor sensor, const Eigen::Vector3d& truth,
                           double temperature_k) {
   nlohmann::json j;
-  j["units"] = sensor == Sensor::gyro
-                   ? nlohmann::json{{"rate", "rad/s"}, {"quantization", "rad"},
-                                    {"white", "rad/s/sqrt(Hz)"}, {"bias_instability", "rad/s"},
-                                    {"rate_random_walk", "rad/s^2/sqrt(Hz)"},
-                                    {"rate_ramp", "rad/s^2"}}
-                   : nlohmann::json{{"rate", "m/s^2"}, {"quantization", "m/s"},
-                                    {"white", "m/s^2/sqrt(Hz)"}, {"bias_instability", "m/s^2"},
-                                    {"rate_random_walk", "m/s^3/sqrt(Hz)"},
-                                    {"rate_ramp", "m/s^3"}};
+  // The rate is the sample unit; the terms' units are si_unit's (display_units.hpp).
+  j["units"] = {{"rate", sensor == Sensor::gyro ? "rad/s" : "m/s^2"}};
+  for (const NoiseTerm term : {NoiseTerm::quantization, NoiseTerm::white,
+                               NoiseTerm::bias_instability, NoiseTerm::rate_random_walk,
+                               NoiseTerm::rate_ramp}) {
+    j["units"][std::string(to_string(term))] = std::string(si_unit(term, sensor));
+  }
   j["truth"] = vector_json(truth);
   j["scale_factor"] = vector_json(m.scale_factor);
   j["misalignment"] = {vector_json(m.misalignment.row(0).transpose()),
