@@ -53,8 +53,8 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   json warnings = json::array();
   results["unit_warnings"] = json::array();
 
-  // Data checks on the log as read: saturation and stuck runs per channel, and whether each
-  // triad's magnitude is plausible for its declared unit (a static log is assumed).
+  // Data checks on the log as read: saturation and stuck runs and outliers per channel, and
+  // whether each triad's magnitude is plausible for its declared unit (a static log is assumed).
   try {
     std::array<std::vector<std::span<const double>>, 2> triad_axes;
     std::array<std::vector<std::string>, 2> triad_names;
@@ -62,6 +62,10 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     for (std::size_t c = 0; c < input.channels.size(); ++c) {
       const auto& channel = input.channels[c];
       for (const auto& w : check_runs(channel.values, channel.name)) warnings.push_back(w.message);
+      OutlierChecker outliers = detail::outlier_checker(
+          channel.name, input.kind, c < input.input_units.size() ? input.input_units[c] : "");
+      outliers.add(channel.values);
+      if (const auto w = outliers.finish()) warnings.push_back(w->message);
       if (!channel.role || input.kind != DataKind::rate) continue;
       const int s = channel.role->sensor == Sensor::gyro ? 0 : 1;
       triad_axes[s].emplace_back(channel.values);

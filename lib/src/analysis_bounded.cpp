@@ -1,8 +1,8 @@
 // The analyze chain in bounded memory (analysis.hpp, run_analysis_bounded): the same stages and
 // numbers as run_analysis (analysis.cpp), with every O(samples) array on disk.
 //
-// Passes: (1) the log, once: data checks (RunChecker, unit sums), the count, and each selected
-// channel's SI values into a ValueSpill; (2) with --trim auto, each channel's warm-up block
+// Passes: (1) the log, once: data checks (RunChecker, OutlierChecker, unit sums), the count,
+// and each selected channel's SI values into a ValueSpill; (2) with --trim auto, each channel's warm-up block
 // means (WarmupBlockSums on the rates); (3) per group of --threads channels, the trimmed values
 // twice: PhaseSeriesBuilder::scan plus the Welch PSD, then PhaseSeriesBuilder::append into
 // spilled storage; the group's curves (compute_allan_curve_bounded); its dynamic windows, each
@@ -41,6 +41,7 @@ class StreamingChecks {
   StreamingChecks(const std::vector<BoundedChannel>& plan, DataKind kind) {
     for (std::size_t c = 0; c < plan.size(); ++c) {
       runs_.emplace_back(plan[c].name);
+      outliers_.push_back(detail::outlier_checker(plan[c].name, kind, plan[c].input_unit));
       if (!plan[c].role || kind != DataKind::rate) continue;
       const int s = plan[c].role->sensor == Sensor::gyro ? 0 : 1;
       triad_[s].push_back(c);
@@ -52,7 +53,10 @@ class StreamingChecks {
 
   /// values[c]: this block's SI values of plan channel c.
   void add(const std::vector<std::span<const double>>& values) {
-    for (std::size_t c = 0; c < values.size(); ++c) runs_[c].add(values[c]);
+    for (std::size_t c = 0; c < values.size(); ++c) {
+      runs_[c].add(values[c]);
+      outliers_[c].add(values[c]);
+    }
     for (std::size_t a = 0; a < triad_[0].size(); ++a) {
       for (const double v : values[triad_[0][a]]) gyro_sums_[a] += v;
     }
@@ -69,8 +73,9 @@ class StreamingChecks {
   /// "unit_warnings", read by the filter files' headers).
   void warnings(json& out, json& unit_out) {
     try {
-      for (auto& checker : runs_) {
-        for (const auto& w : checker.finish()) out.push_back(w.message);
+      for (std::size_t c = 0; c < runs_.size(); ++c) {
+        for (const auto& w : runs_[c].finish()) out.push_back(w.message);
+        if (const auto w = outliers_[c].finish()) out.push_back(w->message);
       }
       for (int s = 0; s < 2; ++s) {
         if (triad_[s].empty()) continue;
@@ -94,6 +99,7 @@ class StreamingChecks {
 
  private:
   std::vector<RunChecker> runs_;
+  std::vector<OutlierChecker> outliers_;
   std::array<std::vector<std::size_t>, 2> triad_;  ///< plan indices of each triad's axes
   std::array<std::vector<std::string>, 2> triad_names_;
   std::array<std::string, 2> triad_unit_;

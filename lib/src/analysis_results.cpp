@@ -11,6 +11,7 @@
 #include "sigmatau/filter_export.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/taus.hpp"
+#include "sigmatau/units.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -178,6 +179,23 @@ std::string rate_label(double rate_hz) {
 }
 
 }  // namespace
+
+OutlierChecker outlier_checker(const std::string& channel, DataKind kind,
+                               const std::string& input_unit) {
+  OutlierOptions options;
+  options.differences = kind == DataKind::phase;
+  double to_si = 1;
+  std::string unit;
+  if (!input_unit.empty()) {
+    try {
+      to_si = parse_unit(input_unit).factor;
+      unit = input_unit;
+    } catch (const Error&) {
+      to_si = 1;  // not a unit parse_unit knows: the message shows the SI value, unlabelled
+    }
+  }
+  return OutlierChecker(channel, options, unit, to_si);
+}
 
 json results_header(const AnalysisOptions& options) {
   json results;

@@ -13,6 +13,7 @@
 
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/analysis.hpp"
+#include "sigmatau/data_checks.hpp"
 #include "sigmatau/phase_series.hpp"
 #include "sigmatau/psd.hpp"
 
@@ -40,6 +41,12 @@ nlohmann::json input_json(const AnalysisInput& input, std::int64_t samples,
 /// One channel's entry in results.json's "channels" (the PSD is added by add_psd).
 nlohmann::json channel_json(const AnalysisChannel& channel, const std::string& input_unit,
                             const std::vector<AllanCurve>& curves);
+
+/// The outlier check of one channel as read (SI values): on the values of rate and increment
+/// logs, on the differences of consecutive values of phase logs (a rate spike is a phase step);
+/// values in the message in `input_unit` ("" = SI, unlabelled).
+OutlierChecker outlier_checker(const std::string& channel, DataKind kind,
+                               const std::string& input_unit);
 
 /// Adds the log-binned PSD and its noise density to a channel entry.
 void add_psd(nlohmann::json& entry, const PsdCurve& psd, const AnalysisChannel& channel,

@@ -173,6 +173,8 @@ std::string to_string(DataWarningKind kind) {
       return "stuck";
     case DataWarningKind::unit:
       return "unit";
+    case DataWarningKind::outlier:
+      return "outlier";
   }
   return "unknown";
 }
