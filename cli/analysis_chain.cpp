@@ -217,7 +217,7 @@ void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze
   }
   ReportOptions report_options;
   report_options.plot_format = plot_format;
-  ReportFiles files = build_report(analysis.results_json, report_options);
+  ReportFiles files = build_report(analysis.results_json, report_options, analysis.filter_files);
   files.files["results.json"] = analysis.results_json;
   for (const auto& [name, text] : analysis.filter_files) files.files[name] = text;
   for (const auto& [name, text] : extra) files.files[name] = text;

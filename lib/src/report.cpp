@@ -20,20 +20,6 @@ namespace {
 
 using namespace report_detail;
 
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 /// True when some checked compliance item was judged against a typical value (no max printed).
 bool typical_limit_used(const json& compliance) {
   for (const auto& item : compliance["items"]) {
@@ -269,7 +255,8 @@ bool any_fit_keeps(const json& results, const char* term) {
   return false;
 }
 
-std::string summary_markdown(const json& results, const std::vector<std::string>& warnings) {
+std::string summary_markdown(const json& results, const std::map<std::string, std::string>& filter_files,
+                             const std::vector<std::string>& warnings) {
   std::ostringstream md;
   const json& input = results["input"];
   md << "# sigmatau report\n\n";
@@ -316,6 +303,7 @@ std::string summary_markdown(const json& results, const std::vector<std::string>
     if (any_fit_rejected(results["compliance"])) md << "\n" << kFitRejectedNote << ".\n";
     if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
+  md << filter_section_markdown(results, filter_files);
   if (!warnings.empty()) {
     md << "\n## Warnings\n";
     for (const auto& w : warnings) md << "- " << w << "\n";
@@ -330,11 +318,16 @@ h1{font-size:1.8em;margin-bottom:.2em}h2{border-bottom:2px solid #ddd;padding-bo
 table{border-collapse:collapse;margin:.6em 0;font-size:.95em}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:left}
 th{background:#f3f3f3}.pass{background:#dff3df}.marginal{background:#fff1cc}.fail{background:#f8d7d7}.inconclusive{background:#e4e8f0}.na{color:#888}
 .verdict{font-size:1.3em;font-weight:bold;padding:.3em .8em;display:inline-block;border-radius:4px}
-.plot svg{width:100%;height:auto}pre{background:#f7f7f7;padding:.8em;overflow-x:auto;font-size:.85em}
+.plot svg{width:100%;height:auto}
+pre{background:#f7f7f7;padding:.8em;font-size:.85em;white-space:pre-wrap;overflow-wrap:anywhere}
+pre.lines>span{display:block}
+.files{margin:.6em 0 1em}.file{margin:.25em 0}.file summary{cursor:pointer}.file pre{margin:.3em 0 .8em}
+.file.missing{background:#f8d7d7;padding:.2em .4em}
 .muted{color:#666;font-size:.9em}
 .banner{background:#fff1cc;border:2px solid #e6a000;border-radius:4px;padding:.6em .9em;margin:1em 0})css";
 
 std::string report_html(const json& results, const PlotSet& plots,
+                        const std::map<std::string, std::string>& filter_files,
                         const std::vector<std::string>& warnings) {
   std::ostringstream h;
   const json& input = results["input"];
@@ -433,14 +426,8 @@ std::string report_html(const json& results, const PlotSet& plots,
     h << "<div class=\"plot\" id=\"plot-" << name << "\">" << svg << "</div>\n";
   }
 
-  // Filter tuning.
-  if (results.contains("filter") && !results["filter"].empty()) {
-    h << "<h2 id=\"filter\">Filter tuning</h2>\n";
-    for (const auto& f : results["filter"]) {
-      h << "<h3>at " << fmt(f.value("rate_hz", 0.0)) << " Hz</h3><pre>"
-        << html_escape(f.value("explain", "")) << "</pre>\n";
-    }
-  }
+  // Filter tuning: the arithmetic and the files written (report_filter.cpp).
+  h << filter_section_html(results, filter_files);
 
   // Provenance.
   h << "<h2 id=\"provenance\">Input and provenance</h2><table>\n";
@@ -469,7 +456,8 @@ std::string report_html(const json& results, const PlotSet& plots,
 
 }  // namespace
 
-ReportFiles build_report(const std::string& results_json, const ReportOptions& options) {
+ReportFiles build_report(const std::string& results_json, const ReportOptions& options,
+                         const std::map<std::string, std::string>& filter_files) {
   json results;
   try {
     results = json::parse(results_json);
@@ -492,9 +480,13 @@ ReportFiles build_report(const std::string& results_json, const ReportOptions& o
   }
   warnings.insert(warnings.end(), plots.warnings.begin(), plots.warnings.end());
   out.warnings = plots.warnings;
+  for (const auto& w : missing_filter_files(results, filter_files)) {
+    warnings.push_back(w);
+    out.warnings.push_back(w);
+  }
   out.files = plots.files;
-  out.files["summary.md"] = summary_markdown(results, warnings);
-  out.files["report.html"] = report_html(results, plots, warnings);
+  out.files["summary.md"] = summary_markdown(results, filter_files, warnings);
+  out.files["report.html"] = report_html(results, plots, filter_files, warnings);
   return out;
 }
 

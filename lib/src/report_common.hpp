@@ -1,6 +1,7 @@
 #pragma once
-// Private to the report (report.cpp, report_common.cpp, report_plots.cpp): what the text tables
-// and the plots share when they read results.json. Not installed.
+// Private to the report (report.cpp, report_common.cpp, report_plots.cpp, report_filter.cpp):
+// what the text tables, the plots and the filter part share when they read results.json. Not
+// installed.
 
 #include <nlohmann/json.hpp>
 
@@ -53,6 +54,32 @@ bool undetected(const json& item);
 /// "gyro white noise x": a compliance row's name. An accelerometer's K and R are named after
 /// acceleration (IEEE 1293), as in `fit`, not "rate random walk".
 std::string item_label(const json& item);
+
+/// `s` with &, <, > and " escaped for HTML text and attribute values.
+std::string html_escape(const std::string& s);
+
+/// `text` (lines indented with spaces: results.json's filter "explain", a filter file) as a
+/// <pre> of class "lines `css_class`" that wraps at the page's width: each line, with its newline,
+/// escaped in a block <span> whose wrapped continuation is indented past the line's own
+/// indentation, so nothing scrolls sideways or is cut off and a wrapped line is not read as a
+/// new one. Removing the span tags gives `text` escaped (a copy gives `text`). (report_filter.cpp)
+std::string wrapped_lines_html(const std::string& text, const std::string& css_class);
+
+/// The "Filter tuning" section of report.html: per rate of results.json's "filter" section the
+/// files written for that rate, each a collapsed <details> whose summary gives its name as
+/// written beside report.html, what it is for and its size in bytes, and whose body its text,
+/// escaped; then the rate's arithmetic (wrapped_lines_html). A file the section names but `files`
+/// (name -> text) lacks is marked missing; a file `files` holds that no rate names is shown last.
+/// Empty without either.
+std::string filter_section_html(const json& results, const std::map<std::string, std::string>& files);
+
+/// summary.md's "Filter files" part: each file by rate with what it is for, a missing one marked
+/// as in filter_section_html. Empty when no file is named or given.
+std::string filter_section_markdown(const json& results, const std::map<std::string, std::string>& files);
+
+/// One warning per file results.json's "filter" section names that `files` lacks.
+std::vector<std::string> missing_filter_files(const json& results,
+                                              const std::map<std::string, std::string>& files);
 
 /// The rendered plots of one report.
 struct PlotSet {

@@ -2,10 +2,13 @@
 /// \file report.hpp
 /// The last stage: from results.json (everything in SI) to what people read: summary.md, a
 /// self-contained report.html (inline SVG plots, no external requests) and the plots as files.
-/// Nothing here computes a statistic: every number shown is read from results.json.
+/// Nothing here computes a statistic: every number shown is read from results.json, and the
+/// filter files written beside the report are shown as they were written.
 
+#include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "sigmatau/plot.hpp"
 
@@ -26,7 +29,13 @@ struct ReportFiles {
 /// compliance) from the text of results.json. When gnuplot is missing the report is written
 /// without plots and a warning says how to install it. Throws Error on a results.json that is
 /// not sigmatau's.
-ReportFiles build_report(const std::string& results_json, const ReportOptions& options);
+/// `filter_files` are the filter files written beside report.html (file name -> text, as
+/// AnalysisOutput::filter_files). The report lists the files results.json's "filter" section
+/// names for each rate, says what each is for and shows its text; summary.md names them. A named
+/// file missing from `filter_files` is marked missing there and becomes a warning (in the report
+/// and in ReportFiles::warnings), so leaving them out never goes unsaid.
+ReportFiles build_report(const std::string& results_json, const ReportOptions& options,
+                         const std::map<std::string, std::string>& filter_files = {});
 
 /// Writes `files` into directory `dir` atomically as a whole: everything goes into a fresh
 /// sibling directory, which is renamed to `dir` at the end. An existing `dir` is an Error unless
