@@ -92,7 +92,7 @@ DemoNoise demo_noise(const DataSheet& sheet, DensityConvention convention, doubl
                           " out (it would be simulated without noise)");
       continue;
     }
-    const SheetNoise noise = simulation_noise_from_data_sheet(sheet, sensor, convention);
+    SheetNoise noise = simulation_noise_from_data_sheet(sheet, sensor, convention);
     if (!noise.has_white)
       out.notes.push_back(sheet.label() + " prints no white noise for the " + what +
                           ", so the demo simulates the " + what + " with " +
@@ -100,18 +100,12 @@ DemoNoise demo_noise(const DataSheet& sheet, DensityConvention convention, doubl
                           join(noise.left_out, ", ") +
                           "): its Allan deviation has no white-noise slope and its filter files "
                           "lack the " + what + " noise density");
+    scale_sheet_noise(noise, scale);
     ErrorModel model;
     model.noise = noise.axes;
-    for (auto& axis : model.noise) {
-      for (auto* term : {&axis.quantization, &axis.white, &axis.bias_instability,
-                         &axis.rate_random_walk, &axis.rate_ramp}) {
-        if (*term) **term *= scale;
-      }
-    }
     (sensor == Sensor::gyro ? out.config.gyro : out.config.accel) = model;
     (sensor == Sensor::gyro ? out.config.gyro_noise_source : out.config.accel_noise_source) =
-        NoiseSource{"data sheet " + sheet.name + ", each term x " + number(scale), noise.read,
-                    noise.left_out};
+        NoiseSource{sheet_noise_origin(sheet, scale), noise.read, noise.left_out};
     for (auto& term : non_typical_terms(sheet, sensor)) out.non_typical.push_back(std::move(term));
   }
   if (!out.config.gyro && !out.config.accel)
@@ -141,9 +135,8 @@ std::string demo_description(const DataSheet& sheet, const DemoArguments& args,
 
 void run_demo(const DemoArguments& args) {
   const DataSheet sheet = load_data_sheet(find_data_sheet(args.sheet, resource_dir("specs")));
-  if (!(args.hours > 0) || !(args.rate_hz > 0) || !(args.scale > 0)) {
-    throw Error("--hours, --rate and --scale must be > 0");
-  }
+  if (!(args.hours > 0) || !(args.rate_hz > 0)) throw Error("--hours and --rate must be > 0");
+  check_sheet_noise_scale(args.scale);
   DemoNoise noise = demo_noise(sheet, parse_density_convention(args.chain.convention), args.scale);
   check_output(args.chain);  // before the simulation
   SimulationConfig& config = noise.config;

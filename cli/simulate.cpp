@@ -26,6 +26,8 @@ struct SimulateArguments {
   std::string gyro_model;
   std::string accel_model;
   std::string spec;
+  /// --spec's noise terms as a fraction of the sheet's values (--scale); nullopt: not given.
+  std::optional<double> scale;
   std::string convention = "two-sided";
   double rate_hz = 0;
   std::string duration;
@@ -234,12 +236,18 @@ void run_simulate(const SimulateArguments& a) {
   pose.yaw_rad = parse_quantity_as(a.yaw, dim::angle, "--yaw");
   c.truth = static_truth(pose);
   if (!a.temperature.empty()) c.temperature_profile = temperature_profile(a.temperature);
+  if (a.scale && a.spec.empty())
+    throw Error("--scale scales a data sheet's noise terms: give --spec (the values of --model / "
+                "--accel-model are typed as wanted)");
+  if (a.scale) check_sheet_noise_scale(*a.scale);
   std::optional<DataSheet> sheet;
   if (!a.spec.empty()) sheet = load_data_sheet(find_data_sheet(a.spec, resource_dir("specs")));
   // A sensor's noise: --model / --accel-model when given (it replaces the sheet's terms for that
   // sensor), else the data sheet's nominal terms (typ, else max) read with the chosen density
-  // convention; a sheet that gives a requested sensor no noise at all is refused, and one that
-  // gives it no white noise is warned about (simulate_spec.hpp). Without either: no noise.
+  // convention, each x --scale when given (as the demo does); a sheet that gives a requested
+  // sensor no noise at all is refused, and one that gives it no white noise is warned about
+  // (simulate_spec.hpp). Without either: no noise.
+  bool sheet_terms_used = false;
   const auto noise_of = [&](Sensor sensor, const std::string& model, const char* option,
                             std::optional<NoiseSource>& source) -> std::array<NoiseTerms, 3> {
     if (!model.empty()) {
@@ -247,11 +255,13 @@ void run_simulate(const SimulateArguments& a) {
       return axis_models(model, sensor, option);
     }
     if (!sheet) return {};
-    const SheetNoise noise =
+    SheetNoise noise =
         simulation_noise_from_data_sheet(*sheet, sensor, parse_density_convention(a.convention));
     if (const std::string warning = sheet_noise_warning(*sheet, sensor, noise); !warning.empty())
       std::cerr << warning << "\n";
-    source = NoiseSource{"data sheet " + sheet->name, noise.read, noise.left_out};
+    if (a.scale) scale_sheet_noise(noise, *a.scale);
+    source = NoiseSource{sheet_noise_origin(*sheet, a.scale), noise.read, noise.left_out};
+    sheet_terms_used = true;
     return noise.axes;
   };
   for (const auto& s : split_list(a.sensors, "--sensors")) {
@@ -274,6 +284,9 @@ void run_simulate(const SimulateArguments& a) {
     }
   }
   if (!a.gyro_model.empty() && !c.gyro) throw Error("--model is given but --sensors has no gyro");
+  if (a.scale && !sheet_terms_used)
+    throw Error("--scale has nothing to scale: --model / --accel-model replace the sheet's terms "
+                "of every simulated sensor");
   if (!a.accel_model.empty() && !c.accel)
     throw Error("--accel-model is given but --sensors has no accel");
   if (c.kind == OutputKind::counts) {
@@ -360,7 +373,13 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--spec", args->spec,
                       "simulate the noise terms of a data sheet (file or name in specs/); "
                       "--model / --accel-model replace its terms for that sensor; a sensor the "
-                      "sheet gives no noise term is refused, one without white noise warned about");
+                      "sheet gives no noise term is refused, one without white noise warned about; "
+                      "--scale scales them");
+  command->add_option("--scale", args->scale,
+                      "with --spec: the sheet's noise terms x this factor (of its typical values, "
+                      "or the maximum where no typical is printed), e.g. 0.8 for a unit a little "
+                      "better than nominal, as `demo --scale`; not applied to --model / "
+                      "--accel-model; recorded in FILE.json's noise_source");
   command->add_option("--density-convention", args->convention,
                       "how --spec's noise density is read: two-sided (N = ND) or one-sided")
       ->capture_default_str();

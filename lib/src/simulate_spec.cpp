@@ -2,6 +2,9 @@
 
 #include "sigmatau/simulate_spec.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
@@ -83,6 +86,34 @@ SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor senso
   if (!t.bias_instability) out.left_out.push_back("bias instability");
   if (!t.rate_random_walk) out.left_out.push_back("rate random walk");
   return out;
+}
+
+void check_sheet_noise_scale(double scale) {
+  if (std::isfinite(scale) && scale > 0) return;
+  char text[48];
+  std::snprintf(text, sizeof text, "%g", scale);
+  throw Error(std::string("--scale must be a number > 0 (the simulated noise terms as a fraction "
+                          "of the sheet's values, e.g. 0.8), got ") + text);
+}
+
+void scale_sheet_noise(SheetNoise& noise, double scale) {
+  check_sheet_noise_scale(scale);
+  for (NoiseTerms& axis : noise.axes) {
+    for (std::optional<double>* term : {&axis.quantization, &axis.white, &axis.bias_instability,
+                                        &axis.rate_random_walk, &axis.rate_ramp}) {
+      if (*term) **term *= scale;
+    }
+  }
+}
+
+std::string sheet_noise_origin(const DataSheet& sheet, std::optional<double> scale) {
+  std::string origin = "data sheet " + sheet.name;
+  if (scale) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%g", *scale);
+    origin += std::string(", each term x ") + text;
+  }
+  return origin;
 }
 
 std::string sheet_noise_warning(const DataSheet& sheet, Sensor sensor, const SheetNoise& noise) {

@@ -9,6 +9,7 @@
 /// sensor simulated without white noise can be warned about and recorded in the sidecar.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,20 @@ SheetNoise simulation_noise_from_data_sheet(const DataSheet& sheet, Sensor senso
 /// simulation_noise_from_data_sheet does not throw. For callers that leave such a sensor out
 /// (the demo) instead of refusing it.
 std::string sheet_noise_gap(const DataSheet& sheet, Sensor sensor, DensityConvention convention);
+
+/// Throws Error "--scale must be a number > 0 ..." unless `scale` (a fraction of the sheet's
+/// values, dimensionless) is finite and > 0. The check of `simulate --scale` and `demo --scale`.
+void check_sheet_noise_scale(double scale);
+
+/// Every noise term of `noise` on every axis (Q, N, B, K, R: those a sheet can give) times
+/// `scale`: a unit `scale` times as noisy as the sheet's nominal one, e.g. 0.8 for one a little
+/// better than nominal. `read` and `left_out` are kept (they say what the sheet prints); the
+/// sidecar records the factor through sheet_noise_origin. Throws as check_sheet_noise_scale.
+void scale_sheet_noise(SheetNoise& noise, double scale);
+
+/// The sidecar's noise_source origin of terms taken from `sheet`: "data sheet NAME", and with a
+/// `scale`, "data sheet NAME, each term x 0.8" (the factor as %g).
+std::string sheet_noise_origin(const DataSheet& sheet, std::optional<double> scale);
 
 /// One line for stderr when `noise` has no white noise: names the sheet, the sensor, every term
 /// left out and the option that supplies them; empty when white noise is given.
