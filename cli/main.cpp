@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -41,6 +43,35 @@ void clean_up_outputs_on_interrupt() {
 /// as for a full disk.
 void report_file_size_limit_as_error() { std::signal(SIGXFSZ, SIG_IGN); }
 
+/// "sigmatau: error: MESSAGE (see `sigmatau VERB --help`)": a CLI11 parse error in the form of
+/// every other error, on one line. An ExtrasError's arguments are listed as typed; without a
+/// command, the first argument (which is none) is named with the commands (CLI11 says only "A
+/// subcommand is required").
+std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
+  std::string message = e.what();
+  // The arguments CLI11 could not place, the root's and the chosen command's, in the order they
+  // were typed (CLI11 2.1's ExtrasError message lists them reversed).
+  const std::vector<std::string> extras = app.remaining(true);
+  const std::vector<CLI::App*> chosen = app.get_subcommands();
+  if (chosen.empty()) {
+    message = "expected a command first" +
+              (extras.empty() ? std::string() : ", got \"" + extras.front() + "\"") +
+              "; the commands:";
+    std::string separator = " ";
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+      message += separator + command->get_name();
+      separator = ", ";
+    }
+  } else if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr && !extras.empty()) {
+    message = extras.size() > 1 ? "The following arguments were not expected:"
+                                : "The following argument was not expected:";
+    for (const std::string& argument : extras) message += " " + argument;
+  }
+  const std::string help =
+      chosen.empty() ? "sigmatau --help" : "sigmatau " + chosen.back()->get_name() + " --help";
+  return "sigmatau: error: " + message + " (see `" + help + "`)";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,8 +96,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    // --help and --version are "errors" of exit code 0 that CLI11 prints itself.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << parse_error_line(app, e) << "\n";
+    return 2;
   } catch (const sigmatau::cli::ExitStatus& status) {
     return status.code;
   } catch (const sigmatau::Error& e) {
