@@ -90,6 +90,12 @@ TEST_CASE("the report names each filter file as written and shows its text, esca
   CHECK(contains(html, "<details class=\"file\" id=\"file-kalibr_imu_200Hz.yaml\"><summary>"));
   CHECK(report.warnings.empty());
   CHECK_FALSE(contains(html, "class=\"file missing\""));
+  // The summary at the top names them too, each a link to its text.
+  const auto line = html.find("<p id=\"filter-files\">");
+  REQUIRE(line != std::string::npos);
+  CHECK(line < html.find("<h2 id=\"filter\">"));
+  CHECK(html.find("<a href=\"#file-kalibr_imu_200Hz.yaml\"><code>kalibr_imu_200Hz.yaml</code></a>", line) !=
+        std::string::npos);
 
   const std::string& md = report.files.at("summary.md");
   CHECK(contains(md, "## Filter files"));
@@ -121,6 +127,7 @@ TEST_CASE("a filter file results.json names but the report is not given is repor
       build_report(results_naming({"kalibr_imu_200Hz.yaml", "px4_ekf2_200Hz.params"}), options, files);
   const std::string& html = report.files.at("report.html");
   CHECK(contains(html, "<p class=\"file missing\"><code>px4_ekf2_200Hz.params</code>: missing"));
+  CHECK(contains(html, "<code>px4_ekf2_200Hz.params</code></a> <strong>(missing)</strong>"));
   REQUIRE(report.warnings.size() == 1);
   CHECK(contains(report.warnings[0], "px4_ekf2_200Hz.params (at 200 Hz) is named in results.json but "
                                      "was not given to the report"));
@@ -151,6 +158,7 @@ TEST_CASE("a filter file given but named by no rate is still shown; no filter, n
   plain.erase("filter");
   const ReportFiles without = build_report(plain.dump(), options);
   CHECK_FALSE(contains(without.files.at("report.html"), "Filter tuning"));
+  CHECK_FALSE(contains(without.files.at("report.html"), "id=\"filter-files\""));
   CHECK_FALSE(contains(without.files.at("summary.md"), "## Filter files"));
   CHECK(without.warnings.empty());
 }

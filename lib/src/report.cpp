@@ -382,6 +382,7 @@ std::string report_html(const json& results, const PlotSet& plots,
     << (show_q ? "; Q: quantization (AVAR = 3 Q&sup2;/&tau;&sup2;)" : "")
     << (show_r ? "; R: rate ramp (AVAR = R&sup2; &tau;&sup2;/2)" : "")
     << ". Terms the data does not support are given as upper bounds (&lt;).</p>\n";
+  h << filter_files_line_html(results, filter_files);
 
   // Compliance.
   if (results.contains("compliance") && !results["compliance"].is_null()) {

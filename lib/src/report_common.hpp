@@ -73,6 +73,10 @@ std::string wrapped_lines_html(const std::string& text, const std::string& css_c
 /// Empty without either.
 std::string filter_section_html(const json& results, const std::map<std::string, std::string>& files);
 
+/// One line for report.html's summary: every filter file by name, each a link to its text under
+/// "Filter tuning", a missing one marked; empty when no file is named or given.
+std::string filter_files_line_html(const json& results, const std::map<std::string, std::string>& files);
+
 /// summary.md's "Filter files" part: each file by rate with what it is for, a missing one marked
 /// as in filter_section_html. Empty when no file is named or given.
 std::string filter_section_markdown(const json& results, const std::map<std::string, std::string>& files);

@@ -155,6 +155,20 @@ std::string filter_section_html(const json& results, const std::map<std::string,
   return h;
 }
 
+std::string filter_files_line_html(const json& results, const std::map<std::string, std::string>& files) {
+  std::string links;
+  for (const FileGroup& group : file_groups(results, files)) {
+    for (const auto& name : group.names) {
+      links += std::string(links.empty() ? "" : ", ") + "<a href=\"#" + html_escape(file_anchor(name)) +
+               "\"><code>" + html_escape(name) + "</code></a>" +
+               (files.count(name) ? "" : " <strong>(missing)</strong>");
+    }
+  }
+  if (links.empty()) return "";
+  return "<p id=\"filter-files\">Filter files, beside this report (shown under <a href=\"#filter\">Filter "
+         "tuning</a>): " + links + ".</p>\n";
+}
+
 std::string filter_section_markdown(const json& results, const std::map<std::string, std::string>& files) {
   const auto groups = file_groups(results, files);
   bool any = false;
