@@ -208,6 +208,27 @@ TEST_CASE("the checker in pieces gives check_outliers' warning, bit for bit") {
   }
 }
 
+TEST_CASE("a block's robust sigma is sigma on Gaussian noise and 1 LSB on mostly one code") {
+  const auto x = white(4096, 5.0, 2.0, 9);
+  // 1024 values (every 4th): q90 gives sigma within 2.8 % (1 standard error), the MAD 3.6 %;
+  // 12 % is > 3 standard errors of either. The median within 0.08 sigma (2 standard errors).
+  for (const double q : {0.9, 0.5}) {
+    CAPTURE(q);
+    const OutlierScale s = outlier_scale(x, q);
+    CHECK(s.sigma == doctest::Approx(2.0).epsilon(0.12).scale(0));
+    CHECK(std::abs(s.median - 5.0) < 0.08 * 2.0);
+  }
+  auto codes = white(4096, 0.0, 0.2, 10);  // 99 % on code 0
+  for (auto& v : codes) v = std::round(v) * 0.01;  // an LSB of 0.01
+  const OutlierScale c = outlier_scale(codes);
+  CHECK(c.median == 0.0);
+  CHECK(c.sigma == 0.01);  // the smallest step away from m, exactly
+  CHECK(outlier_scale(std::vector<double>(100, 3.0)).sigma == 0.0);
+  CHECK(outlier_scale(std::vector<double>{}).sigma == 0.0);
+  CHECK_THROWS_AS(outlier_scale(x, 0.4), Error);
+  CHECK_THROWS_AS(outlier_scale(x, 1.0), Error);
+}
+
 TEST_CASE("bad outlier options are refused") {
   OutlierOptions options;
   options.block_rows = 63;
@@ -216,6 +237,9 @@ TEST_CASE("bad outlier options are refused") {
   options.threshold_sigma = 0;
   CHECK_THROWS_AS(OutlierChecker("x", options), Error);
   options.threshold_sigma = NAN;
+  CHECK_THROWS_AS(OutlierChecker("x", options), Error);
+  options.threshold_sigma = 8;
+  options.scale_quantile = 0.3;
   CHECK_THROWS_AS(OutlierChecker("x", options), Error);
   CHECK_THROWS_AS(OutlierChecker("x", {}, "deg/s", 0.0), Error);
   CHECK(to_string(DataWarningKind::outlier) == "outlier");

@@ -6,6 +6,7 @@
 // block_rows rows); sample = every stride-th finite value of the window.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "sigmatau/data_checks.hpp"
@@ -20,10 +21,47 @@ constexpr std::size_t kMaxSample = 1024;
 /// Fewest rows a channel needs to be checked at all: below this, q90 rests on too few values
 /// (its standard error is ~11 % at 64) for a threshold meant to be far in the tail.
 constexpr std::int64_t kMinRows = 64;
-/// Quantile of |x - m| that gives s, and the standard normal's |z| at that quantile
-/// (Phi^-1(0.95) = 1.6448536...), so that s = sigma on Gaussian noise.
-constexpr double kScaleQuantile = 0.9;
-constexpr double kScaleQuantileZ = 1.6448536269514722;
+/// |z| of the standard normal at which P(|Z| <= z) = q, by bisection on erfc (exact to ~1e-15;
+/// run once per checker). q = 0.9 gives 1.6448536..., q = 0.5 gives 0.6744897... (1 / 1.4826).
+double normal_abs_quantile(double q) {
+  double lo = 0, hi = 40;
+  for (int i = 0; i < 200 && lo < hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (std::erfc(mid / std::numbers::sqrt2) > 1 - q ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void check_quantile(double q) {
+  if (!(q >= 0.5 && q < 1)) {
+    throw Error("outlier check: the scale quantile must be in [0.5, 1), got " + std::to_string(q));
+  }
+}
+
+/// m and s of `window` (see OutlierScale); `sample` is scratch.
+OutlierScale scale_of(std::span<const double> window, double q, double z,
+                      std::vector<double>& sample) {
+  const std::size_t stride = std::max<std::size_t>(1, window.size() / kMaxSample);
+  sample.clear();
+  for (std::size_t i = 0; i < window.size(); i += stride) {
+    if (std::isfinite(window[i])) sample.push_back(window[i]);
+  }
+  if (sample.empty()) return {};
+  const auto middle = sample.begin() + static_cast<std::ptrdiff_t>(sample.size() / 2);
+  std::nth_element(sample.begin(), middle, sample.end());
+  const double m = *middle;
+  double d_min = INFINITY;
+  for (double& v : sample) {
+    v = std::abs(v - m);
+    if (v > 0 && v < d_min) d_min = v;
+  }
+  if (d_min == INFINITY) return {m, 0.0};  // one value only: nothing can be told apart
+  const auto k = std::min(sample.size() - 1,
+                          static_cast<std::size_t>(q * static_cast<double>(sample.size())));
+  std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(k), sample.end());
+  return {m, std::max(sample[k] / z, d_min)};
+}
 
 std::string format_value(double v, const std::string& unit) {
   std::ostringstream s;
@@ -44,7 +82,11 @@ std::string format_sigma(double v) {
 
 OutlierChecker::OutlierChecker(std::string channel, OutlierOptions options, std::string unit,
                                double to_si)
-    : channel_(std::move(channel)), options_(options), unit_(std::move(unit)), to_si_(to_si) {
+    : channel_(std::move(channel)),
+      options_(options),
+      quantile_z_(1),
+      unit_(std::move(unit)),
+      to_si_(to_si) {
   if (!(options_.block_rows >= kMinRows)) {
     throw Error("outlier check: the block must be >= " + std::to_string(kMinRows) +
                 " rows, got " + std::to_string(options_.block_rows));
@@ -55,6 +97,8 @@ OutlierChecker::OutlierChecker(std::string channel, OutlierOptions options, std:
   if (!(to_si_ > 0 && std::isfinite(to_si_))) {
     throw Error("outlier check: the unit factor must be > 0");
   }
+  check_quantile(options_.scale_quantile);
+  quantile_z_ = normal_abs_quantile(options_.scale_quantile);
   const auto rows = static_cast<std::size_t>(options_.block_rows);
   block_.reserve(rows);
   previous_.reserve(rows);
@@ -65,26 +109,8 @@ OutlierChecker::OutlierChecker(std::string channel, OutlierOptions options, std:
 
 void OutlierChecker::check_block(std::span<const double> window, std::size_t first,
                                  std::int64_t first_row) {
-  // m and s from every stride-th finite value of the window.
-  const std::size_t stride = std::max<std::size_t>(1, window.size() / kMaxSample);
-  sample_.clear();
-  for (std::size_t i = 0; i < window.size(); i += stride) {
-    if (std::isfinite(window[i])) sample_.push_back(window[i]);
-  }
-  if (sample_.empty()) return;
-  const auto middle = sample_.begin() + static_cast<std::ptrdiff_t>(sample_.size() / 2);
-  std::nth_element(sample_.begin(), middle, sample_.end());
-  const double m = *middle;
-  double d_min = INFINITY;
-  for (double& v : sample_) {
-    v = std::abs(v - m);
-    if (v > 0 && v < d_min) d_min = v;
-  }
-  if (d_min == INFINITY) return;  // one value only: s = 0, nothing can be told apart
-  const auto q = std::min(sample_.size() - 1,
-                          static_cast<std::size_t>(kScaleQuantile * static_cast<double>(sample_.size())));
-  std::nth_element(sample_.begin(), sample_.begin() + static_cast<std::ptrdiff_t>(q), sample_.end());
-  const double s = std::max(sample_[q] / kScaleQuantileZ, d_min);
+  const auto [m, s] = scale_of(window, options_.scale_quantile, quantile_z_, sample_);
+  if (!(s > 0)) return;
   const double limit = options_.threshold_sigma * s;
   for (std::size_t i = first; i < window.size(); ++i) {
     const double x = window[i];
@@ -108,28 +134,37 @@ void OutlierChecker::check_block(std::span<const double> window, std::size_t fir
   }
 }
 
-void OutlierChecker::push(double x) {
-  block_.push_back(x);
-  if (static_cast<std::int64_t>(block_.size()) < options_.block_rows) return;
-  check_block(block_, 0, row_ + 1 - options_.block_rows);
-  std::swap(block_, previous_);
-  block_.clear();
+void OutlierChecker::push(std::span<const double> values) {
+  const auto rows = static_cast<std::size_t>(options_.block_rows);
+  while (!values.empty()) {
+    const std::size_t n = std::min(values.size(), rows - block_.size());
+    block_.insert(block_.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(n));
+    values = values.subspan(n);
+    row_ += static_cast<std::int64_t>(n);
+    if (block_.size() < rows) return;
+    check_block(block_, 0, row_ - options_.block_rows);
+    std::swap(block_, previous_);
+    block_.clear();
+  }
 }
 
 void OutlierChecker::add(std::span<const double> values) {
-  for (const double x : values) {
-    if (options_.differences) {
-      const double last = last_;
-      last_ = x;
-      if (!have_last_) {
-        have_last_ = true;
-        continue;
-      }
-      push(x - last);
-    } else {
-      push(x);
+  if (!options_.differences) {
+    push(values);
+    return;
+  }
+  // Differences in pieces of at most 4096, through a small buffer.
+  double buffer[4096];
+  while (!values.empty()) {
+    std::size_t n = 0;
+    std::size_t i = 0;
+    for (; i < values.size() && n < std::size(buffer); ++i) {
+      if (have_last_) buffer[n++] = values[i] - last_;
+      last_ = values[i];
+      have_last_ = true;
     }
-    ++row_;
+    push(std::span<const double>(buffer, n));
+    values = values.subspan(i);
   }
 }
 
@@ -169,6 +204,12 @@ std::optional<DataWarning> OutlierChecker::finish() {
               std::to_string(w.first_row) + " (" + format_value(w.first_value / to_si_, unit_) +
               ")";
   return w;
+}
+
+OutlierScale outlier_scale(std::span<const double> window, double scale_quantile) {
+  check_quantile(scale_quantile);
+  std::vector<double> sample;
+  return scale_of(window, scale_quantile, normal_abs_quantile(scale_quantile), sample);
 }
 
 std::optional<DataWarning> check_outliers(std::span<const double> values,

@@ -154,46 +154,60 @@ std::optional<DataWarning> check_accel_unit(const std::vector<std::span<const do
 /// most 1024 of its rows, evenly strided (every 4th of 4096):
 ///   median    m = the sample's median (upper median for an even count);
 ///   sigma     s = max(q90 / 1.6449, d_min), q90 = the 90th percentile of |x - m| over the sample
-///             (1.6449 = the 95 % point of the standard normal, so s = sigma for Gaussian noise),
+///             (1.6449 = the standard normal's |z| at 90 %, so s = sigma for Gaussian noise),
 ///             d_min = the smallest |x - m| > 0 in the sample (the data's resolution near m).
 /// Every row of the block with |x - m| > k s (k = options.threshold_sigma) is an outlier. The
 /// last, partial block takes m and s from the last block_rows rows of the channel (it shares
 /// rows with the block before); a channel shorter than one block is one block, checked when it
 /// has >= 64 rows. Non-finite values are never outliers and never enter m or s (as the run
 /// checks never form runs of them). A block whose sample holds one value only (a constant
-/// channel: check_stuck's business) has s = 0 and flags nothing.
+/// channel: check_stuck's business) has s = 0 and flags nothing. Nothing is removed or changed.
 ///
-/// Why these choices (numbers from bench/bench_outliers.cpp and tests/test_outlier_check.cpp,
-/// November 2026):
-/// - The scale is the 90th percentile, not the MAD (the 50th): on the real XSens MTi-G gyro
+/// Why these choices (bench/bench_outliers.cpp, bench/results_outliers.md, November 2026):
+/// - The scale is the 90th percentile, not the MAD (the 50th). On the real XSens MTi-G gyro
 ///   (shared/data/imu/xsens_mtig_cont_imu1, 500,000 rows) the healthy noise is a narrow core
-///   plus a wide component, and the MAD sees only the core: 8738 rows beyond 8 MAD-sigma, a
-///   smooth tail with no gap. With q90 the counts are 568, 161, 130, 127, 121, 102 beyond 4, 5, 6,
-///   7, 8, 10 sigma: a plateau from 6 to 8 (the ~130 isolated spikes up to 0.297 rad/s the data
-///   set is known for). For Gaussian noise q90 is also the more precise scale (2.8 % standard
-///   error from 1024 values against 3.6 % for the MAD), and on a random walk it cannot be
-///   pulled far below the path's excursion (90 % of the block lies within q90 of m). It breaks
-///   down only when > 10 % of a block's sample are outliers.
-/// - k = 8: on Gaussian white noise the expected false alarms are ~1e-6 per 1e8 samples (the
-///   Gaussian tail 1.2e-15 per sample, times the spread of s; 0 seen in 1e8 simulated samples,
-///   largest 6.2 sigma), so a warning is never the noise's own tail; k = 6 would give ~0.3 per
-///   1e8. On the ADIS16405 (1e6 rows x 6 channels) and HiPNUC CH104 (321,253 rows x 6) gyros
-///   nothing exceeds 5.3 sigma; 1 and 3 rows of the ADIS accel x and y (single samples of 8-10
-///   LSB) and 11 of its accel z (a shock at row 678, 17 sigma) are flagged.
-/// - d_min keeps quantized data quiet: when more than 90 % of a block sits on one code (noise
-///   below ~0.4 LSB) q90 is 0, and s = 1 LSB then asks for a jump of > 8 LSB; a float32-stored
-///   channel (1e6 + noise: 0.0625 steps) is the same case.
-/// - Blocks by row index make the result independent of how the values arrive, and cost O(1)
-///   memory (two blocks); a block of 4096 rows is 41 s at 100 Hz, short against bias drift and
-///   long enough for a 1024-value sample. Cost ~5 ns per row (two nth_element on 1024 values per
-///   4096 rows plus one comparison per row).
+///   plus a wide component, and the MAD sees only the core: 8736 rows beyond 8 MAD-sigma, a
+///   smooth tail with no gap. With q90 the counts beyond 4, 5, 6, 7, 8, 10 sigma are 568, 161,
+///   130, 127, 121, 102: a plateau from 6 to 8, the isolated spikes up to 0.297 rad/s (49.8
+///   sigma, row 312386) the data set is known for. On Gaussian noise q90 is also the more
+///   precise scale (2.8 % spread from 1024 values; the MAD's is 3.6 %), and a random walk
+///   cannot pull it far below the path's excursion (90 % of the block lies within q90 of m). It
+///   breaks down only when > 10 % of a block's sample are outliers.
+/// - k = 8. Expected false alarms on Gaussian white noise, from the tail at each block's own m
+///   and s over 20,000 blocks: 6e-7 per 1e8 samples (7: 7e-4; 6: 0.33). Simulated (Simulator,
+///   100 Hz, 1e8 samples each): white noise 0 beyond 6 sigma, largest 5.97; a rate random walk
+///   whose step equals the white noise, and a pure random walk: 31 and 64 beyond 6, none beyond
+///   7, largest 6.25; 0.5-LSB white noise through a real quantizer: none beyond 3. Real logs:
+///   the ADIS16405 gyros (1e6 rows) and all six HiPNUC CH104 channels (321,253 rows, coarse
+///   steps) reach 5.2 sigma at most; the ADIS accelerometers give 1 (x), 3 (y, single samples
+///   of 8-10 LSB) and 11 (z: a shock at row 678, 17.3 sigma) outliers.
+/// - d_min keeps quantized data quiet: below ~0.6 LSB of noise q90 / 1.6449 < 1 LSB, and with
+///   s = 1 LSB a jump must exceed 8 LSB; a channel stored as float32 (1e6 + noise: steps of
+///   0.0625) is the same case.
+/// - Blocks by row index make the result independent of how the values arrive, in O(1) memory
+///   (two blocks); 4096 rows is 41 s at 100 Hz, short against bias drift. Cost 4.8 ns per value
+///   (thread CPU time; one summing pass over the same values: 0.9 ns), about 3/4 of it the
+///   two nth_element per block.
 struct OutlierOptions {
   std::int64_t block_rows = 4096;  ///< rows per block; >= 64
   double threshold_sigma = 8;      ///< k: flag |x - median| > k robust sigma; > 0
+  /// q in [0.5, 1): sigma from the q-quantile of |x - median| over the sample, divided by the
+  /// standard normal's |z| at q (0.5 gives the MAD x 1.4826; see above for why 0.9).
+  double scale_quantile = 0.9;
   /// Check the differences of consecutive values instead (phase data, where a spike in the rate
   /// is a step): row i is x[i] - x[i-1], row 0 has none.
   bool differences = false;
 };
+
+/// A block's centre and robust sigma, as the outlier check computes them (see OutlierOptions).
+struct OutlierScale {
+  double median = 0;  ///< m [as the values]
+  double sigma = 0;   ///< s [as the values]; 0 when the sample holds fewer than two values
+};
+
+/// m and s of one window of values: from every stride-th finite value, stride =
+/// max(1, size / 1024). Throws Error when scale_quantile is outside [0.5, 1).
+OutlierScale outlier_scale(std::span<const double> window, double scale_quantile = 0.9);
 
 /// check_outliers on a channel delivered in pieces: add() every value in order, then finish()
 /// returns what check_outliers returns on the whole channel, bit for bit, however the values
@@ -201,7 +215,8 @@ struct OutlierOptions {
 class OutlierChecker {
  public:
   /// `unit` and `to_si` only label values in the message (value / to_si, then the unit; no unit
-  /// when empty). Throws Error when block_rows < 64, threshold_sigma is not > 0 or to_si not > 0.
+  /// when empty). Throws Error when block_rows < 64, threshold_sigma is not > 0, scale_quantile
+  /// is outside [0.5, 1) or to_si not > 0.
   explicit OutlierChecker(std::string channel, OutlierOptions options = {}, std::string unit = "",
                           double to_si = 1);
   void add(std::span<const double> values);
@@ -209,10 +224,11 @@ class OutlierChecker {
   std::optional<DataWarning> finish();
 
  private:
-  void push(double x);
+  void push(std::span<const double> values);  ///< values of the checked series, in order
   void check_block(std::span<const double> window, std::size_t first, std::int64_t first_row);
   std::string channel_;
   OutlierOptions options_;
+  double quantile_z_;              ///< the standard normal's |z| at options_.scale_quantile
   std::string unit_;
   double to_si_;
   std::int64_t row_ = 0;           ///< rows of the checked series pushed so far
