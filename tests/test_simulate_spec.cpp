@@ -1,5 +1,6 @@
 // `simulate --spec`: the noise terms a data sheet gives the simulator and the ones it leaves out
-// (review C finding 8). Uses the shipped sheets in specs/.
+// (review C finding 8). Uses the shipped sheets in specs/, and a made-up fixture that prints no
+// noise term at all (tests/data/specs/no_noise_terms.yaml).
 #include "sigmatau/simulate_spec.hpp"
 
 #include <doctest/doctest.h>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "sigmatau/error.hpp"
+#include "test_support.hpp"
 
 using namespace sigmatau;
 
@@ -16,6 +18,11 @@ namespace {
 const std::filesystem::path kSpecsDir = std::filesystem::path(SIGMATAU_SOURCE_DIR) / "specs";
 
 DataSheet sheet(const char* name) { return load_data_sheet(kSpecsDir / (std::string(name) + ".yaml")); }
+
+/// The fixture with gyro ranges only and an accelerometer RMS noise (2.5 mg), no noise term.
+DataSheet no_noise_terms() {
+  return load_data_sheet(test::test_data_dir() / "specs" / "no_noise_terms.yaml");
+}
 
 /// The Error message of simulation_noise_from_data_sheet, or "" when it does not throw.
 std::string refusal(const DataSheet& s, Sensor sensor) {
@@ -41,15 +48,16 @@ TEST_CASE("a sensor the sheet gives no noise term is refused, naming the sheet a
     CHECK(contains(m, "--accel-model"));
     CHECK(refusal(sheet("bosch_bmi088"), Sensor::gyro).empty());  // its gyro density is read
   }
-  SUBCASE("LSM6DSO gyro: ranges only") {
-    const std::string m = refusal(sheet("st_lsm6dso"), Sensor::gyro);
+  SUBCASE("gyro: ranges only") {
+    const std::string m = refusal(no_noise_terms(), Sensor::gyro);
+    CHECK(contains(m, "data sheet no_noise_terms"));
     CHECK(contains(m, "prints no gyro noise term"));
     CHECK(contains(m, "--model"));
   }
-  SUBCASE("LSM6DSO accelerometer: an RMS noise, which is no density, is named") {
-    const std::string m = refusal(sheet("st_lsm6dso"), Sensor::accel);
+  SUBCASE("accelerometer: an RMS noise, which is no density, is named") {
+    const std::string m = refusal(no_noise_terms(), Sensor::accel);
     CHECK(contains(m, "prints no accel noise term"));
-    CHECK(contains(m, "RMS noise 1.8 mg is a total over the output band, not a density"));
+    CHECK(contains(m, "RMS noise 2.5 mg is a total over the output band, not a density"));
   }
 }
 

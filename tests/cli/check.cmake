@@ -52,11 +52,14 @@ sigmatau_cli_test(NAME cli_check_undetected_analyze EXIT 0 WORKING_DIRECTORY ${c
 set_tests_properties(cli_check_undetected_analyze PROPERTIES FIXTURES_REQUIRED check_n_only_log_5min)
 
 # Nothing compared is not a pass (review C finding 7): a sheet that prints none of the measured
-# items gives no verdict, exit 2 like any input that cannot be checked, and no output file.
+# items (a fixture with no noise term) gives no verdict, exit 2 like any input that cannot be
+# checked, and no output file.
 sigmatau_cli_test(NAME cli_check_nothing_to_check EXIT 2
-  STDERR "nothing to check: st_lsm6dso \\(LSM6DSO\\) prints none of the 2 items measured"
+  STDERR "nothing to check: no_noise_terms \\(T-RMS\\) prints none of the 2 items measured"
   NO_FILE ${CMAKE_CURRENT_BINARY_DIR}/cli_check_nothing.txt
-  ARGS check --spec st_lsm6dso ${check_data}/fit_pass.json -o ${CMAKE_CURRENT_BINARY_DIR}/cli_check_nothing.txt)
+  ARGS check --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml
+       ${check_data}/fit_pass.json
+       -o ${CMAKE_CURRENT_BINARY_DIR}/cli_check_nothing.txt)
 
 # A calibration whose accelerometer triad is turned 2 mrad about z beside a perfect gyro (review
 # C finding 6, tests/data/check/README.md): the gyro's non-orthogonality (frame-free) passes

@@ -33,8 +33,10 @@ sigmatau_cli_test(NAME cli_convert_bad_format EXIT 2 STDERR "expected kalibr, op
   ARGS convert --noise-density "0.015 deg/s/sqrt(Hz)" --rate 10 --to rovio)
 sigmatau_cli_test(NAME cli_convert_gm_from_k EXIT 2 STDERR "use --bias-model rw"
   ARGS convert --random-walk "0.02 deg/h/sqrt(h)" --rate 10 --bias-model gm)
-sigmatau_cli_test(NAME cli_convert_nothing EXIT 2 STDERR "nothing to convert"
-  ARGS convert --spec st_lsm6dso --rate 100)
+# A sheet with no noise term (a fixture: gyro ranges, accelerometer RMS noise only).
+sigmatau_cli_test(NAME cli_convert_nothing EXIT 2
+  STDERR "no_noise_terms\\.yaml prints no noise density.*nothing to convert"
+  ARGS convert --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml --rate 100)
 sigmatau_cli_test(NAME cli_convert_no_output_without_force EXIT 2
   STDERR "exists; use --force" NO_FILE ${convert_out}/never.yaml
   ARGS convert --spec safran_stim300 --rate 125 --to kalibr -o ${PROJECT_SOURCE_DIR}/specs/safran_stim300.yaml)

@@ -7,12 +7,14 @@ set(demo_sheets_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_demo_sheets)
 file(MAKE_DIRECTORY ${demo_sheets_dir})
 set(demo_check ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_json.cmake)
 
-# LSM6DSO prints neither noise density (only an RMS noise): nothing to simulate, exit 2, nothing
-# written. It used to simulate two noiseless sensors and exit 0 with "stuck sensor" warnings.
+# A sheet that prints no noise term (a fixture: gyro ranges, accelerometer RMS noise only):
+# nothing to simulate, exit 2, nothing written. It used to simulate two noiseless sensors and exit
+# 0 with "stuck sensor" warnings.
 sigmatau_cli_test(NAME cli_demo_sheet_without_noise_terms EXIT 2
-  STDERR "data sheet st_lsm6dso .*prints no gyro noise term .* and prints no accel noise term .*RMS noise.*nothing to simulate"
-  NO_FILE ${demo_sheets_dir}/lsm6dso
-  ARGS demo --sheet st_lsm6dso --hours 0.2 -o ${demo_sheets_dir}/lsm6dso --force)
+  STDERR "data sheet no_noise_terms .*prints no gyro noise term .* and prints no accel noise term .*RMS noise.*nothing to simulate"
+  NO_FILE ${demo_sheets_dir}/no_noise_terms
+  ARGS demo --sheet ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml --hours 0.2
+       -o ${demo_sheets_dir}/no_noise_terms --force)
 
 # BMI088 prints no accelerometer noise term: the demo simulates the gyro only (three fitted
 # channels), names the accel as left out first in the Warnings, and nothing is stuck or unplotted.

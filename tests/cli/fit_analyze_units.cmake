@@ -196,12 +196,14 @@ set_tests_properties(cli_fit_bag_gyro_unit_contradicts cli_analyze_bag_unit_cont
 # analyze --spec with a sheet that prints no limit on what the log measures: exit 2, a message
 # naming the sheet and the log's channels, and no output directory, as `check` does (it used to
 # print "nothing to check" and exit 0, a silent pass for a gate on the exit code). A gyro-only
-# log against the LSM6DSO (no gyro noise figure), checked from the header before the read.
+# log against a fixture sheet with no noise figure (tests/data/specs/no_noise_terms.yaml),
+# checked from the header before the read.
 sigmatau_cli_test(NAME cli_analyze_spec_nothing_to_check_gyro EXIT 2
-  STDERR "nothing to check: st_lsm6dso \\(LSM6DSO\\) prints no limit on the noise terms measured in .*gyro_static_100Hz.csv.gz: the log has gyro channels gx, gy, gz; .* limits are for no sensor"
+  STDERR "nothing to check: no_noise_terms \\(T-RMS\\) prints no limit on the noise terms measured in .*gyro_static_100Hz.csv.gz: the log has gyro channels gx, gy, gz; .* limits are for no sensor"
   NO_FILE ${fau_dir}/nothing_gyro
   ARGS analyze ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz --time-column t
-       --gyro-unit deg/s --spec st_lsm6dso -o ${fau_dir}/nothing_gyro)
+       --gyro-unit deg/s --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml
+       -o ${fau_dir}/nothing_gyro)
 # The other way round: accelerometer columns against the BMI088 (noise limits for its gyro only).
 sigmatau_cli_test(NAME cli_analyze_spec_nothing_to_check_accel EXIT 2
   STDERR "nothing to check: bosch_bmi088 \\(BMI088\\) .*the log has accelerometer channels ax, ay, az; .* limits are for the gyro"

@@ -232,12 +232,16 @@ sigmatau_cli_test(NAME cli_simulate_spec_no_accel_noise EXIT 2 NO_FILE ${SIMO_DI
   WORKING_DIRECTORY ${SIMO_DIR}
   STDERR "data sheet bosch_bmi088 .*prints no accel noise term.*--accel-model"
   ARGS simulate --spec bosch_bmi088 --sensors gyro,accel --rate 100 --duration 10 -o bad.csv)
+# A fixture with gyro ranges only and an accelerometer RMS noise only (tests/data/specs).
 sigmatau_cli_test(NAME cli_simulate_spec_no_gyro_noise EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
-  WORKING_DIRECTORY ${SIMO_DIR} STDERR "data sheet st_lsm6dso .*prints no gyro noise term.*--model"
-  ARGS simulate --spec st_lsm6dso --sensors gyro --rate 100 --duration 10 -o bad.csv)
+  WORKING_DIRECTORY ${SIMO_DIR}
+  STDERR "data sheet no_noise_terms .*prints no gyro noise term.*--model"
+  ARGS simulate --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml --sensors gyro
+       --rate 100 --duration 10 -o bad.csv)
 sigmatau_cli_test(NAME cli_simulate_spec_rms_only EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
-  WORKING_DIRECTORY ${SIMO_DIR} STDERR "RMS noise 1\\.8 mg is a total over the output band"
-  ARGS simulate --spec st_lsm6dso --sensors accel --rate 100 --duration 10 -o bad.csv)
+  WORKING_DIRECTORY ${SIMO_DIR} STDERR "RMS noise 2\\.5 mg is a total over the output band"
+  ARGS simulate --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml --sensors accel
+       --rate 100 --duration 10 -o bad.csv)
 sigmatau_cli_test(NAME cli_simulate_spec_no_white EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
   STDOUT "wrote"
   STDERR "warning: data sheet adi_adis16465 .*prints no white noise for the accel.*left out: white noise"
