@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sigmatau/error.hpp"
 #include "test_support.hpp"
@@ -96,4 +98,18 @@ TEST_CASE("a sheet with white noise gives it, with no warning, and lists what it
                                                         DensityConvention::two_sided);
   CHECK(a.has_white);
   CHECK(a.left_out == std::vector<std::string>{"rate random walk"});
+}
+
+TEST_CASE("the LSM6DSO's noise densities are simulated, its RMS noise is not needed") {
+  const DataSheet s = sheet("st_lsm6dso");
+  for (const auto& [sensor, density] : {std::pair{Sensor::gyro, "noise density 3.8 mdps/√Hz"},
+                                        std::pair{Sensor::accel, "noise density 70 µg/√Hz"}}) {
+    CAPTURE(to_string(sensor));
+    const SheetNoise n = simulation_noise_from_data_sheet(s, sensor, DensityConvention::two_sided);
+    CHECK(n.has_white);
+    CHECK(sheet_noise_warning(s, sensor, n).empty());
+    REQUIRE(n.read.size() == 1);
+    CHECK(contains(n.read[0], density));
+    CHECK(n.left_out == std::vector<std::string>{"bias instability", "rate random walk"});
+  }
 }
