@@ -11,17 +11,18 @@
 // 2. The expected false alarms per 1e8 Gaussian samples at k = 6, 7, 8: over B blocks (default
 //    20000) of 4096 N(0, 1) values, the mean of P(|Z - m| > k s) for the block's own m and s
 //    (outlier_scale), which counts what 1e8 samples cannot show (1e-15 per sample).
-// 3. The real logs under DIR (default ../shared/data/imu: run from the source tree): counts beyond 4..10 sigma with the q90 scale (the default) and
+// 3. The real logs under DIR (default ../shared/data/imu: run from the source tree): counts
+// beyond 4..10 sigma with the q90 scale (the default) and
 //    with the MAD (scale_quantile 0.5), and the largest.
 // 4. Cost: check_outliers on 1e7 values, median of 7 runs of this thread's CPU time, against
 //    one pass summing them.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <numbers>
 #include <random>
@@ -51,9 +52,11 @@ struct Ladder {
 };
 
 void false_alarms(std::int64_t samples) {
-  std::printf("## False alarms on simulated healthy gyro triads (100 Hz, %.3g samples each row)\n\n",
-              static_cast<double>(samples));
-  std::printf("| log | > 5 sigma | > 6 | > 7 | > 8 | largest [sigma] |\n|---|---|---|---|---|---|\n");
+  std::printf(
+      "## False alarms on simulated healthy gyro triads (100 Hz, %.3g samples each row)\n\n",
+      static_cast<double>(samples));
+  std::printf(
+      "| log | > 5 sigma | > 6 | > 7 | > 8 | largest [sigma] |\n|---|---|---|---|---|---|\n");
   struct Case {
     const char* name;
     double white, walk, quantizer;
@@ -90,7 +93,8 @@ void false_alarms(std::int64_t samples) {
     while ((rows = sim.next(block, kRows)) > 0) {
       channel.resize(static_cast<std::size_t>(rows));
       for (int a = 0; a < 3; ++a) {
-        for (std::int64_t i = 0; i < rows; ++i) channel[i] = block[static_cast<std::size_t>(i * 3 + a)];
+        for (std::int64_t i = 0; i < rows; ++i)
+          channel[i] = block[static_cast<std::size_t>(i * 3 + a)];
         for (auto& checker : ladders[a].checkers) checker.add(channel);
         largest[a].add(channel);
       }
@@ -110,10 +114,11 @@ void false_alarms(std::int64_t samples) {
                 static_cast<long long>(counts[2]), static_cast<long long>(counts[3]), largest_text);
     std::fflush(stdout);
   }
-  std::printf("\nGaussian two-sided tail per 1e8 samples: %.3g beyond 5, %.3g beyond 6, %.3g beyond 7, "
-              "%.3g beyond 8 sigma.\n\n",
-              1e8 * std::erfc(5 / std::numbers::sqrt2), 1e8 * std::erfc(6 / std::numbers::sqrt2),
-              1e8 * std::erfc(7 / std::numbers::sqrt2), 1e8 * std::erfc(8 / std::numbers::sqrt2));
+  std::printf(
+      "\nGaussian two-sided tail per 1e8 samples: %.3g beyond 5, %.3g beyond 6, %.3g beyond 7, "
+      "%.3g beyond 8 sigma.\n\n",
+      1e8 * std::erfc(5 / std::numbers::sqrt2), 1e8 * std::erfc(6 / std::numbers::sqrt2),
+      1e8 * std::erfc(7 / std::numbers::sqrt2), 1e8 * std::erfc(8 / std::numbers::sqrt2));
 }
 
 void expected_false_alarms(std::int64_t blocks) {
@@ -150,8 +155,10 @@ void expected_false_alarms(std::int64_t blocks) {
 
 void real_logs(const std::filesystem::path& dir) {
   std::printf("## Real logs (%s)\n\n", dir.string().c_str());
-  std::printf("| log | channel | rows | scale | > 4 | > 5 | > 6 | > 7 | > 8 | > 10 | largest [sigma] at row |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| log | channel | rows | scale | > 4 | > 5 | > 6 | > 7 | > 8 | > 10 | largest [sigma] at "
+      "row |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   const char* logs[] = {"adis16405_imudata/adis16405_imu1_100Hz.csv.gz",
                         "hipnuc_ch104/hipnuc_ch104_static_100Hz.csv.gz",
                         "xsens_mtig_cont_imu1/xsens_mtig_gyro_x_100Hz_contaminated.csv.gz"};
@@ -216,8 +223,9 @@ void cost() {
     sum_ns.push_back((t2 - t1) / n);
   }
   std::printf("## Cost (1e7 values, median of 7 runs, thread CPU time)\n\n");
-  std::printf("check_outliers: %.2f ns per value; one summing pass over the same values: %.2f ns.\n",
-              bench::median(check_ns), bench::median(sum_ns));
+  std::printf(
+      "check_outliers: %.2f ns per value; one summing pass over the same values: %.2f ns.\n",
+      bench::median(check_ns), bench::median(sum_ns));
 }
 
 }  // namespace

@@ -218,7 +218,7 @@ TEST_CASE("a block's robust sigma is sigma on Gaussian noise and 1 LSB on mostly
     CHECK(s.sigma == doctest::Approx(2.0).epsilon(0.12).scale(0));
     CHECK(std::abs(s.median - 5.0) < 0.08 * 2.0);
   }
-  auto codes = white(4096, 0.0, 0.2, 10);  // 99 % on code 0
+  auto codes = white(4096, 0.0, 0.2, 10);          // 99 % on code 0
   for (auto& v : codes) v = std::round(v) * 0.01;  // an LSB of 0.01
   const OutlierScale c = outlier_scale(codes);
   CHECK(c.median == 0.0);

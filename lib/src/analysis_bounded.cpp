@@ -2,13 +2,14 @@
 // numbers as run_analysis (analysis.cpp), with every O(samples) array on disk.
 //
 // Passes: (1) the log, once: data checks (RunChecker, OutlierChecker, unit sums), the count,
-// and each selected channel's SI values into a ValueSpill; (2) with --trim auto, each channel's warm-up block
-// means (WarmupBlockSums on the rates); (3) per group of --threads channels, the trimmed values
-// twice: PhaseSeriesBuilder::scan plus the Welch PSD, then PhaseSeriesBuilder::append into
-// spilled storage; the group's curves (compute_allan_curve_bounded); its dynamic windows, each
-// built the same way. Every sum runs over the same values in the same order as the in-memory
-// path, so results.json is the same to the last bit (tests/test_analysis_bounded.cpp,
-// tests/cli/analyze_bounded.cmake).
+// and each selected channel's SI values into a ValueSpill; (2) with --trim auto, each channel's
+// warm-up block means (WarmupBlockSums on the rates); (3) per group of --threads channels, the
+// trimmed values twice: PhaseSeriesBuilder::scan plus the Welch PSD, then
+// PhaseSeriesBuilder::append into spilled storage; the group's curves
+// (compute_allan_curve_bounded); its dynamic windows, each built the same way. Every sum runs
+// over the same values in the same order as the in-memory path, so results.json is the same to
+// the last bit (tests/test_analysis_bounded.cpp, tests/cli/analyze_bounded.cmake,
+// tests/cli/analyze_outliers.cmake).
 //
 // Glossary: n = samples read per channel; trim = samples dropped at the start; rates = the
 // series the PSD and the warm-up see (increments x rate, phase differences x rate, rates as is).

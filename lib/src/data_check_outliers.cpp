@@ -57,8 +57,8 @@ OutlierScale scale_of(std::span<const double> window, double q, double z,
     if (v > 0 && v < d_min) d_min = v;
   }
   if (d_min == INFINITY) return {m, 0.0};  // one value only: nothing can be told apart
-  const auto k = std::min(sample.size() - 1,
-                          static_cast<std::size_t>(q * static_cast<double>(sample.size())));
+  const auto k =
+      std::min(sample.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sample.size())));
   std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(k), sample.end());
   return {m, std::max(sample[k] / z, d_min)};
 }
@@ -88,8 +88,8 @@ OutlierChecker::OutlierChecker(std::string channel, OutlierOptions options, std:
       unit_(std::move(unit)),
       to_si_(to_si) {
   if (!(options_.block_rows >= kMinRows)) {
-    throw Error("outlier check: the block must be >= " + std::to_string(kMinRows) +
-                " rows, got " + std::to_string(options_.block_rows));
+    throw Error("outlier check: the block must be >= " + std::to_string(kMinRows) + " rows, got " +
+                std::to_string(options_.block_rows));
   }
   if (!(options_.threshold_sigma > 0 && std::isfinite(options_.threshold_sigma))) {
     throw Error("outlier check: the threshold must be > 0 sigma");
@@ -190,10 +190,9 @@ std::optional<DataWarning> OutlierChecker::finish() {
   DataWarning w = found_;
   w.first_row += shift;
   w.longest_row += shift;
-  const std::string what =
-      options_.differences ? (w.runs == 1 ? " difference" : " differences") +
-                                 std::string(" of consecutive samples")
-                           : (w.runs == 1 ? " sample" : " samples");
+  const std::string what = options_.differences ? (w.runs == 1 ? " difference" : " differences") +
+                                                      std::string(" of consecutive samples")
+                                                : (w.runs == 1 ? " sample" : " samples");
   w.message = w.channel + ": " + std::to_string(w.runs) + what + " beyond " +
               format_sigma(options_.threshold_sigma) + " robust sigma of their " +
               std::to_string(options_.block_rows) +
@@ -213,9 +212,8 @@ OutlierScale outlier_scale(std::span<const double> window, double scale_quantile
 }
 
 std::optional<DataWarning> check_outliers(std::span<const double> values,
-                                          const std::string& channel,
-                                          const OutlierOptions& options, const std::string& unit,
-                                          double to_si) {
+                                          const std::string& channel, const OutlierOptions& options,
+                                          const std::string& unit, double to_si) {
   OutlierChecker checker(channel, options, unit, to_si);
   checker.add(values);
   return checker.finish();
