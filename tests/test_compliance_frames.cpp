@@ -121,7 +121,8 @@ TEST_CASE("non-orthogonality does not change when the calibration frame is rotat
       Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   TriadMatrix rotated = t;
   rotated.a = t.a * r;  // the same axes written in a rotated frame
-  for (const auto& [i, j] : {std::pair{0, 1}, std::pair{0, 2}, std::pair{1, 2}}) {
+  for (const auto& axes : {std::pair{0, 1}, std::pair{0, 2}, std::pair{1, 2}}) {
+    const int i = axes.first, j = axes.second;
     CAPTURE(i);
     CAPTURE(j);
     // The Gram matrix is unchanged up to rounding: 1e-9 relative of a ~1e-3 angle.

@@ -308,7 +308,9 @@ void check_dataset(const Dataset& data, std::initializer_list<std::pair<const ch
   if (!test::has_reference_data(std::string(data.dir) + "/" + data.input)) return;
   const PhaseSeries series = load_series(data);
   Summary summary;
-  for (const auto& [file, statistic] : tables) {
+  for (const auto& table : tables) {
+    const char* const file = table.first;
+    const Statistic statistic = table.second;
     CAPTURE(file);
     check_table({&data, file, statistic}, series, summary);
   }

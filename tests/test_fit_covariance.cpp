@@ -88,8 +88,8 @@ TEST_CASE("the discrete Gauss rule sums polynomials of degree < 2n over 0..M-1 e
 
 TEST_CASE("Q, N and K lag correlations equal the inverse FFT of their per-sample PSDs") {
   // The FFT is exact for these trigonometric polynomials once P > 2 (m_a + m_b + 1).
-  for (const auto& [ma, mb, n] : kLayouts) {
-    (void)n;
+  for (const Layout& layout : kLayouts) {
+    const std::int64_t ma = layout.ma, mb = layout.mb;
     std::int64_t big_p = 256;
     while (big_p < 4 * (ma + mb + 1)) big_p *= 2;
     const auto ref = fft_lag_correlations(ma, mb, kTau0, std::nullopt, big_p);
@@ -121,8 +121,9 @@ TEST_CASE(
   // flicker far field; GM decays faster); the check is over u < 16 (m_a + m_b), where the sums
   // are carried, and the tolerance is that alias.
   const std::int64_t big_p = std::int64_t{1} << 18;
-  for (const auto& [ma, mb] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+  for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{
            {1, 1}, {1, 3}, {4, 4}, {5, 16}, {40, 33}}) {
+    const std::int64_t ma = factors.first, mb = factors.second;
     for (const std::optional<double> gm :
          {std::optional<double>{}, std::optional<double>{0.3}, std::optional<double>{0.01}}) {
       const auto ref = fft_lag_correlations(ma, mb, kTau0, gm, big_p);
@@ -173,15 +174,17 @@ std::pair<double, double> direct_second_difference(double lag, std::int64_t ma, 
 TEST_CASE("the flicker far-field series joins the direct sum of generalized covariances") {
   // evaluate() switches to the series at |u| = 6 (m_a + m_b). Just beyond it the direct sum of
   // the nine G(d) ~ d^2 ln d loses eps x sum |g g G| to cancellation: that is the tolerance.
-  for (const auto& [ma, mb] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+  for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{
            {1, 1}, {1, 5}, {8, 3}, {100, 100}, {1000, 17}, {65536, 4096}}) {
+    const std::int64_t ma = factors.first, mb = factors.second;
     const PairCorrelation corr(ma, mb, kTau0, std::nullopt);
     std::vector<double> c(4);
     for (const double factor : {6.01, 6.5, 9.0}) {
       const double u = std::ceil(factor * static_cast<double>(ma + mb));
       const double lag = u + static_cast<double>(ma - mb);
       corr.evaluate(lag, c);
-      const auto [direct, magnitude] = direct_second_difference(lag, ma, mb);
+      const auto sums = direct_second_difference(lag, ma, mb);
+      const double direct = sums.first, magnitude = sums.second;
       const double mm = static_cast<double>(ma) * static_cast<double>(mb);
       INFO("m_a = " << ma << " m_b = " << mb << " u = " << u << " series " << c[2] << " direct "
                     << direct / mm);
@@ -194,8 +197,9 @@ TEST_CASE("the flicker inner series joins the direct second difference for unequ
   // With m_a << m_b the second difference over m_a of G ~ d^2 ln d cancels (d / m_a)^2 digits,
   // so evaluate() takes it as a series from |d| >= max(6 m_a, 64). Against the direct sum at
   // lags across the support; tolerance: the direct sum's own rounding, eps x sum |g g G|.
-  for (const auto& [ma, mb] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+  for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{
            {1, 64}, {1, 1000}, {2, 5000}, {7, 3000}, {3000, 7}, {100, 20000}}) {
+    const std::int64_t ma = factors.first, mb = factors.second;
     const PairCorrelation corr(ma, mb, kTau0, std::nullopt);
     std::vector<double> c(4);
     const std::int64_t span = ma + mb;
@@ -203,7 +207,8 @@ TEST_CASE("the flicker inner series joins the direct second difference for unequ
     for (std::int64_t u = -span; u <= span; u += std::max<std::int64_t>(1, span / 997)) {
       const double lag = static_cast<double>(u + ma - mb);
       corr.evaluate(lag, c);
-      const auto [direct, magnitude] = direct_second_difference(lag, ma, mb);
+      const auto sums = direct_second_difference(lag, ma, mb);
+      const double direct = sums.first, magnitude = sums.second;
       const double mm = static_cast<double>(ma) * static_cast<double>(mb);
       const double err = std::abs(c[2] - direct / mm);
       worst = std::max(worst, err / (64 * kEps * magnitude / mm + 1e-12));
@@ -218,7 +223,8 @@ TEST_CASE("the flicker inner series joins the direct second difference for unequ
 TEST_CASE("Q, N, K and ramp lag sums agree with the previous FFT path to 1e-10") {
   // The FFT window (-P/2, P/2) holds every lag where these terms are non-zero, so the previous
   // path is exact for them up to rounding: any difference is an error of the new one.
-  for (const auto& [ma, mb, n] : kLayouts) {
+  for (const Layout& layout : kLayouts) {
+    const std::int64_t ma = layout.ma, mb = layout.mb, n = layout.n_phase;
     const LagSums fft = covariance_lag_sums_fft(ma, mb, n, kTau0, std::nullopt, 8);
     const LagSums fresh = covariance_lag_sums(PairCorrelation(ma, mb, kTau0, std::nullopt), n);
     for (const int i : {0, 1, 3}) {
@@ -240,7 +246,8 @@ TEST_CASE("Q, N, K and ramp lag sums agree with the previous FFT path to 1e-10")
 
 TEST_CASE("flicker and Gauss-Markov lag sums by quadrature equal the direct sum over every lag") {
   double worst = 0;
-  for (const auto& [ma, mb, n] : kLayouts) {
+  for (const Layout& layout : kLayouts) {
+    const std::int64_t ma = layout.ma, mb = layout.mb, n = layout.n_phase;
     for (const std::optional<double> gm :
          {std::optional<double>{}, std::optional<double>{0.02}, std::optional<double>{1e-4}}) {
       const PairCorrelation corr(ma, mb, kTau0, gm);
@@ -267,7 +274,8 @@ TEST_CASE("lag sums at m = 2^22 keep 1e-12 relative accuracy against a long doub
   // 128-bit integer second-difference sums and summed in long double (independent of the
   // library code).
   const std::int64_t m = std::int64_t{1} << 22;
-  for (const auto& [ma, mb] : std::vector<std::pair<std::int64_t, std::int64_t>>{{m, m}, {3, m}}) {
+  for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{{m, m}, {3, m}}) {
+    const std::int64_t ma = factors.first, mb = factors.second;
     const std::int64_t n = 4 * m + 12345;
     const std::int64_t na = n - 2 * ma, nb = n - 2 * mb;
     long double cc[4][4] = {};

@@ -70,8 +70,9 @@ TEST_CASE("a fail by 0.13 % reads 1.001, not 1; typ and max limits are marked") 
 }
 
 TEST_CASE("a typical limit is said not to be a guarantee, once, beside the verdict") {
-  const nlohmann::json typ = {
-      item("gyro", "white_noise", "fail", 1.0013, 1.0042, "angle_random_walk", "0.34 °/√hr", true)};
+  // json::array: a braced list of one json is that json itself under clang (an array under GCC).
+  const nlohmann::json typ = nlohmann::json::array(
+      {item("gyro", "white_noise", "fail", 1.0013, 1.0042, "angle_random_walk", "0.34 °/√hr", true)});
   ReportOptions options;
   options.plots = false;
   const ReportFiles files = build_report(results_with(typ).dump(), options);
@@ -82,16 +83,16 @@ TEST_CASE("a typical limit is said not to be a guarantee, once, beside the verdi
   CHECK(files.files.at("report.html").find(note) != std::string::npos);
 
   // Only max limits: no such note.
-  const nlohmann::json max = {
-      item("accel", "bias_instability", "pass", 0.5, 0.61, "bias_instability", "15 µg", false)};
+  const nlohmann::json max = nlohmann::json::array(
+      {item("accel", "bias_instability", "pass", 0.5, 0.61, "bias_instability", "15 µg", false)});
   const ReportFiles max_files = build_report(results_with(max).dump(), options);
   CHECK(max_files.files.at("summary.md").find(note) == std::string::npos);
   CHECK(max_files.files.at("report.html").find(note) == std::string::npos);
 }
 
 TEST_CASE("the verdict rule under the compliance table advises --ci 0.95 for a gate") {
-  const nlohmann::json items = {
-      item("gyro", "white_noise", "pass", 0.8, 0.9, "noise_density", "0.014 °/s/√Hz", true)};
+  const nlohmann::json items = nlohmann::json::array(
+      {item("gyro", "white_noise", "pass", 0.8, 0.9, "noise_density", "0.014 °/s/√Hz", true)});
   ReportOptions options;
   options.plots = false;
   const ReportFiles files = build_report(results_with(items).dump(), options);
@@ -138,8 +139,8 @@ TEST_CASE("the ADEV plot names the sheet's white-noise line after the printed fi
   CHECK(files.files.at("adev_accel.svg").find("data sheet VRW") != std::string::npos);
   CHECK(files.files.at("adev_gyro.svg").find("data sheet noise density") == std::string::npos);
 
-  const nlohmann::json density = {
-      item("gyro", "white_noise", "pass", 0.8, 0.9, "noise_density", "0.014 °/s/√Hz", true)};
+  const nlohmann::json density = nlohmann::json::array(
+      {item("gyro", "white_noise", "pass", 0.8, 0.9, "noise_density", "0.014 °/s/√Hz", true)});
   const ReportFiles density_files = build_report(results_with(density).dump(), options);
   CHECK(density_files.files.at("adev_gyro.svg").find("data sheet noise density") !=
         std::string::npos);

@@ -293,7 +293,8 @@ TEST_CASE("THEORY 9 T8 and T10: accelerometer noise density to VRW") {
   // Published to 3-4 digits; tolerance is half a unit in the last printed place.
   const std::array<std::pair<double, double>, 4> nd_vrw = {
       {{400, 0.2354}, {230, 0.1353}, {70, 0.0412}, {140, 0.0824}}};
-  for (const auto& [nd_ug, vrw_published] : nd_vrw) {
+  for (const auto& row : nd_vrw) {
+    const double nd_ug = row.first, vrw_published = row.second;
     INFO(nd_ug << " ug/sqrt(Hz)");
     const double vrw = convert(nd_ug, "ug/sqrt(Hz)", "m/s/sqrt(h)");
     const double half_ulp = 0.5e-4;  // all four are printed to 4 decimals
