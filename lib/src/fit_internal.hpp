@@ -53,7 +53,6 @@ struct AvarPoint {
   double dev = 0;
   double edf = 0;
   int alpha = 0;
-  double ci_high_dev = 0;
 };
 
 ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& source,
