@@ -1,7 +1,6 @@
 // `sigmatau convert`: data sheet or typed-in noise terms -> discrete covariances at a filter
 // rate, exported for a filter project, with the arithmetic on request (--explain).
 #include <cctype>
-#include <cmath>
 #include <cstdlib>
 #include <iostream>
 
@@ -136,13 +135,12 @@ void run_convert(const ConvertArguments& args) {
       std::string lower = args.noise_density;
       for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       const bool random_walk_form = lower.find("hz") == std::string::npos;
-      const bool two = options.convention == DensityConvention::two_sided;
-      terms.white = two || random_walk_form ? nd : nd / std::sqrt(2.0);
-      t.white_origin = "noise density " + args.noise_density +
-                       (random_walk_form ? " read as the random walk N itself (a unit per root time, "
-                                           "not per root Hz: no density convention applies)"
-                        : two            ? " read as N = ND (two-sided)"
-                                         : " read as one-sided: N = ND / sqrt(2)");
+      terms.white = random_walk_form ? nd : white_from_noise_density(nd, options.convention);
+      t.white_origin =
+          "noise density " + args.noise_density + " " +
+          (random_walk_form ? "read as the random walk N itself (a unit per root time, not per "
+                              "root Hz: no density convention applies)"
+                            : std::string(noise_density_reading(options.convention)));
     }
     std::string bias;
     if (!args.bias_stability.empty()) {

@@ -29,6 +29,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -47,6 +48,19 @@ enum class DensityConvention {
 std::string_view to_string(DensityConvention convention);
 /// "two-sided" | "one-sided"; throws Error otherwise.
 DensityConvention parse_density_convention(std::string_view text);
+/// The white-noise density N (the Allan N) of a printed noise density ND read under
+/// `convention`, in ND's unit (e.g. rad/s/sqrt(Hz)): ND two-sided, ND / sqrt(2) one-sided.
+/// Not for a printed ARW / VRW, which is N itself.
+inline double white_from_noise_density(double noise_density, DensityConvention convention) {
+  return convention == DensityConvention::two_sided ? noise_density
+                                                    : noise_density / std::sqrt(2.0);
+}
+/// How white_from_noise_density reads ND, for explanations: "read as N = ND (two-sided)" or
+/// "read as one-sided: N = ND / sqrt(2)".
+inline std::string_view noise_density_reading(DensityConvention convention) {
+  return convention == DensityConvention::two_sided ? "read as N = ND (two-sided)"
+                                                    : "read as one-sided: N = ND / sqrt(2)";
+}
 
 /// How the bias is modelled in the filter.
 enum class BiasModel {
