@@ -4,6 +4,7 @@
 #include <memory>
 #include <numbers>
 
+#include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/calibrate.hpp"
@@ -19,9 +20,9 @@ namespace sigmatau::cli {
 namespace {
 
 struct CalibrateArguments {
-  LogArguments log;
+  LogArguments log;  // with --gyro-unit / --accel-unit (add_sensor_unit_options; unset: SI)
   std::string gyro_columns, accel_columns, temp_column;
-  std::string gyro_unit = "rad/s", accel_unit = "m/s^2", temp_unit = "K";
+  std::string temp_unit = "K";
   std::optional<double> gravity;
   std::optional<double> latitude_deg;
   std::string reference_temperature = "25 degC";
@@ -47,7 +48,7 @@ struct ColumnPlan {
   std::vector<std::size_t> column;  // per row value: ax ay az [gx gy gz] [temp]
   bool gyro = false, temperature = false;
   double accel_factor = 1, gyro_factor = 1;
-  std::string accel_unit, gyro_unit;  // as given (or the default), for the unit checks' messages
+  std::string accel_unit, gyro_unit;  // as given (or SI), for the unit checks' messages
   Unit temp_unit, kelvin;  // temperature: (v * factor + offset - K offset) / K factor (convert())
 };
 
@@ -69,21 +70,35 @@ ColumnPlan plan_columns(const CalibrateArguments& a, const std::vector<std::stri
     return out;
   };
   ColumnPlan plan;
-  const Dimension accel_dim = increments ? dim::velocity : dim::acceleration;
-  const Dimension gyro_dim = increments ? dim::angle : dim::angular_rate;
-  const std::string accel_unit = increments && a.accel_unit == "m/s^2" ? "m/s" : a.accel_unit;
-  const std::string gyro_unit = increments && a.gyro_unit == "rad/s" ? "rad" : a.gyro_unit;
-  plan.accel_factor = parse_unit_as(accel_unit, accel_dim, "--accel-unit").factor;
-  plan.accel_unit = accel_unit;
-  plan.gyro_unit = gyro_unit;
-  for (const auto& n : names(a.accel_columns, "a", "--accel"))
-    plan.column.push_back(find_column(channel_names, a.log.input, n, "--accel"));
+  // The sensor of each column is the one --accel / --gyro (or its default names) gives it; the
+  // columns' units follow the rules every log-reading verb shares (channel_units_of: both units
+  // checked against --kind whether or not the log has that sensor, a ROS bag's fixed units).
+  std::vector<std::string> columns = names(a.accel_columns, "a", "--accel");
   const auto gyro_names = names(a.gyro_columns, "g", "--gyro");
-  if (!a.gyro_columns.empty() || has(gyro_names[0])) {
-    plan.gyro = true;
-    plan.gyro_factor = parse_unit_as(gyro_unit, gyro_dim, "--gyro-unit").factor;
-    for (const auto& n : gyro_names)
-      plan.column.push_back(find_column(channel_names, a.log.input, n, "--gyro"));
+  plan.gyro = !a.gyro_columns.empty() || has(gyro_names[0]);
+  if (plan.gyro) columns.insert(columns.end(), gyro_names.begin(), gyro_names.end());
+  std::vector<ChannelSensor> sensors;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const bool gyro = c >= 3;
+    const bool named = !(gyro ? a.gyro_columns : a.accel_columns).empty();
+    sensors.push_back({ChannelRole{gyro ? Sensor::gyro : Sensor::accel, static_cast<int>(c % 3)},
+                       named ? (gyro ? "by --gyro" : "by --accel") : "by its name"});
+  }
+  const std::vector<ChannelUnit> units = channel_units_of(a.log, columns, sensors, false);
+  // No unit given: the values are taken as SI (the unit checks' messages name it).
+  const auto factor = [](const ChannelUnit& u) { return u.unit.empty() ? 1.0 : u.to_si; };
+  const auto label = [](const ChannelUnit& u, const char* si) {
+    return u.unit.empty() ? std::string(si) : u.unit;
+  };
+  plan.accel_factor = factor(units[0]);
+  plan.accel_unit = label(units[0], increments ? "m/s" : "m/s^2");
+  if (plan.gyro) {
+    plan.gyro_factor = factor(units[3]);
+    plan.gyro_unit = label(units[3], increments ? "rad" : "rad/s");
+  }
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    plan.column.push_back(
+        find_column(channel_names, a.log.input, columns[c], c < 3 ? "--accel" : "--gyro"));
   }
   // The temperature unit is checked whether or not the log has a temperature column: a wrong
   // --temp-unit is a mistake either way.
@@ -159,7 +174,12 @@ void run_calibrate(const CalibrateArguments& a) {
               << " (bounded memory, the same results)\n";
   };
   if (options.gaps == GapPolicy::fill) {
-    LoadedChannels loaded = load_channels(a.log);
+    // Read as they are: plan_columns gives the sensors' columns their units (load_channels would
+    // want a unit for every column, the temperature too).
+    LogArguments as_read = a.log;
+    as_read.gyro_unit.clear();
+    as_read.accel_unit.clear();
+    LoadedChannels loaded = load_channels(as_read);
     const ColumnPlan plan = start(loaded.log.channel_names);
     append_rows(plan, loaded.log.channels, *log, row_buffer);
     rate_hz = loaded.rate_hz;
@@ -243,10 +263,15 @@ void add_calibrate_command(CLI::App& app) {
   command->add_option("--gyro", args->gyro_columns, "gyro columns x,y,z (default gx,gy,gz)");
   command->add_option("--accel", args->accel_columns, "accelerometer columns x,y,z (default ax,ay,az)");
   command->add_option("--temp-column", args->temp_column, "temperature column (default temp, when present)");
-  command->add_option("--gyro-unit", args->gyro_unit, "unit of the gyro columns (deg/s, dps, ...)")
-      ->capture_default_str();
-  command->add_option("--accel-unit", args->accel_unit, "unit of the accelerometer columns (g, mg, ...)")
-      ->capture_default_str();
+  // The shared --gyro-unit / --accel-unit, with calibrate's own help: its columns are chosen by
+  // --gyro / --accel, --unit is refused, and a unit not given is SI.
+  add_sensor_unit_options(*command, args->log);
+  command->get_option("--gyro-unit")
+      ->description("unit of the gyro columns (--gyro), e.g. deg/s; default rad/s (rad with "
+                    "--kind increment)");
+  command->get_option("--accel-unit")
+      ->description("unit of the accelerometer columns (--accel), e.g. g or mg; default m/s^2 "
+                    "(m/s with --kind increment)");
   command->add_option("--temp-unit", args->temp_unit, "unit of the temperature column (K, degC)")
       ->capture_default_str();
   command->add_option("--gravity", args->gravity, "local gravity [m/s^2] (default 9.80665)");

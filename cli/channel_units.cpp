@@ -130,7 +130,8 @@ std::vector<ChannelUnit> channel_units_of(const LogArguments& args,
         throw Error(args.input + ": channel " + names[c] + " is " + unit.unit +
                     " (a ROS bag's sensor_msgs/Imu, whose units REP 103 fixes), but " +
                     other->source + " " + other->unit + " says otherwise; leave " +
-                    other->source + " out (--out-unit chooses the printed unit)");
+                    other->source + " out (adev and psd print the results in another unit with "
+                    "--out-unit)");
       }
       continue;
     }

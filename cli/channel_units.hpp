@@ -1,8 +1,9 @@
 #pragma once
-// The unit of every channel of a log, for every verb that reads one (adev, psd, fit, analyze):
-// one --unit, --gyro-unit / --accel-unit by the columns' sensors (their names, classify_channel,
-// or analyze's --gyro / --accel), or the units a ROS bag's sensor_msgs/Imu fixes; and the
-// printed unit of each channel's results (--out-unit, one per sensor).
+// The unit of every channel of a log, for every verb that reads one (adev, psd, fit, analyze,
+// calibrate): one --unit, --gyro-unit / --accel-unit by the columns' sensors (their names,
+// classify_channel, or analyze's and calibrate's --gyro / --accel), or the units a ROS bag's
+// sensor_msgs/Imu fixes; and the printed unit of each channel's results (--out-unit, one per
+// sensor).
 #include <optional>
 #include <string>
 #include <vector>
