@@ -2,9 +2,8 @@
 // instead of scrolling sideways, each filter file results.json names is listed by its name as
 // written, said what it is for and shown, escaped; summary.md names the files; a file the report
 // is not given is said to be missing, in the page and as a warning.
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 
@@ -46,7 +45,8 @@ const std::string kJson = "{\n  \"rate_hz\": 200.0\n}\n";
 /// report.html with the per-line spans of the wrapped text blocks removed: what the browser's
 /// text of a block is (the spans add no characters).
 std::string without_line_spans(const std::string& html) {
-  static const std::regex span(R"(<span style="padding-left:[0-9]+ch;text-indent:-[0-9]+ch">|</span>)");
+  static const std::regex span(
+      R"(<span style="padding-left:[0-9]+ch;text-indent:-[0-9]+ch">|</span>)");
   return std::regex_replace(html, span, "");
 }
 
@@ -54,11 +54,20 @@ std::string escaped(std::string s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -83,7 +92,8 @@ TEST_CASE("the report names each filter file as written and shows its text, esca
   CHECK(contains(text, escaped(kJson)));
   CHECK_FALSE(contains(html, "gyro K < 2e-7"));  // never raw
   // Named as written, with what the file is for (its own first comment line) and its size.
-  CHECK(contains(html, "<code>kalibr_imu_200Hz.yaml</code>: Kalibr imu.yaml (continuous-time densities)"));
+  CHECK(contains(
+      html, "<code>kalibr_imu_200Hz.yaml</code>: Kalibr imu.yaml (continuous-time densities)"));
   CHECK(contains(html, "(" + std::to_string(kKalibr.size()) + " bytes)"));
   CHECK(contains(html, "<code>filter_200Hz.json</code>: sigmatau's JSON"));
   // Collapsed: a <details> without `open`.
@@ -94,8 +104,8 @@ TEST_CASE("the report names each filter file as written and shows its text, esca
   const auto line = html.find("<p id=\"filter-files\">");
   REQUIRE(line != std::string::npos);
   CHECK(line < html.find("<h2 id=\"filter\">"));
-  CHECK(html.find("<a href=\"#file-kalibr_imu_200Hz.yaml\"><code>kalibr_imu_200Hz.yaml</code></a>", line) !=
-        std::string::npos);
+  CHECK(html.find("<a href=\"#file-kalibr_imu_200Hz.yaml\"><code>kalibr_imu_200Hz.yaml</code></a>",
+                  line) != std::string::npos);
 
   const std::string& md = report.files.at("summary.md");
   CHECK(contains(md, "## Filter files"));
@@ -114,8 +124,10 @@ TEST_CASE("the filter arithmetic wraps line by line with a hanging indent instea
   CHECK(contains(html, "white-space:pre-wrap"));
   // Each line is a block of its own; a wrapped continuation of the 2-space-indented bias line
   // starts 4 characters past that indentation (2 + 4 = 6), of the 4-space one at 8.
-  CHECK(contains(html, "<span style=\"padding-left:6ch;text-indent:-6ch\">  bias: from the noise-term fit;"));
-  CHECK(contains(html, "<span style=\"padding-left:8ch;text-indent:-8ch\">    x: Q_bb = K^2 T_s &lt; 1e-12"));
+  CHECK(contains(
+      html, "<span style=\"padding-left:6ch;text-indent:-6ch\">  bias: from the noise-term fit;"));
+  CHECK(contains(
+      html, "<span style=\"padding-left:8ch;text-indent:-8ch\">    x: Q_bb = K^2 T_s &lt; 1e-12"));
   CHECK(contains(html, "pre.lines>span{display:block}"));
 }
 
@@ -123,14 +135,15 @@ TEST_CASE("a filter file results.json names but the report is not given is repor
   ReportOptions options;
   options.plots = false;
   const std::map<std::string, std::string> files = {{"kalibr_imu_200Hz.yaml", kKalibr}};
-  const ReportFiles report =
-      build_report(results_naming({"kalibr_imu_200Hz.yaml", "px4_ekf2_200Hz.params"}), options, files);
+  const ReportFiles report = build_report(
+      results_naming({"kalibr_imu_200Hz.yaml", "px4_ekf2_200Hz.params"}), options, files);
   const std::string& html = report.files.at("report.html");
   CHECK(contains(html, "<p class=\"file missing\"><code>px4_ekf2_200Hz.params</code>: missing"));
   CHECK(contains(html, "<code>px4_ekf2_200Hz.params</code></a> <strong>(missing)</strong>"));
   REQUIRE(report.warnings.size() == 1);
-  CHECK(contains(report.warnings[0], "px4_ekf2_200Hz.params (at 200 Hz) is named in results.json but "
-                                     "was not given to the report"));
+  CHECK(contains(report.warnings[0],
+                 "px4_ekf2_200Hz.params (at 200 Hz) is named in results.json but "
+                 "was not given to the report"));
   // In the banner's count and the Warnings list of both pages.
   CHECK(contains(html, "<strong>Warning:</strong> 1 warning"));
   CHECK(contains(html, "<li>filter file px4_ekf2_200Hz.params"));
@@ -148,7 +161,8 @@ TEST_CASE("a filter file results.json names but the report is not given is repor
 TEST_CASE("a filter file given but named by no rate is still shown; no filter, no section") {
   ReportOptions options;
   options.plots = false;
-  const ReportFiles extra = build_report(results_naming({}), options, {{"gtsam_200Hz.txt", "# GTSAM x\n"}});
+  const ReportFiles extra =
+      build_report(results_naming({}), options, {{"gtsam_200Hz.txt", "# GTSAM x\n"}});
   const std::string& html = extra.files.at("report.html");
   CHECK(contains(html, "<h3>files results.json does not name</h3>"));
   CHECK(contains(html, "<code>gtsam_200Hz.txt</code>: GTSAM x"));

@@ -71,15 +71,18 @@ std::string wrapped_lines_html(const std::string& text, const std::string& css_c
 /// escaped; then the rate's arithmetic (wrapped_lines_html). A file the section names but `files`
 /// (name -> text) lacks is marked missing; a file `files` holds that no rate names is shown last.
 /// Empty without either.
-std::string filter_section_html(const json& results, const std::map<std::string, std::string>& files);
+std::string filter_section_html(const json& results,
+                                const std::map<std::string, std::string>& files);
 
 /// One line for report.html's summary: every filter file by name, each a link to its text under
 /// "Filter tuning", a missing one marked; empty when no file is named or given.
-std::string filter_files_line_html(const json& results, const std::map<std::string, std::string>& files);
+std::string filter_files_line_html(const json& results,
+                                   const std::map<std::string, std::string>& files);
 
 /// summary.md's "Filter files" part: each file by rate with what it is for, a missing one marked
 /// as in filter_section_html. Empty when no file is named or given.
-std::string filter_section_markdown(const json& results, const std::map<std::string, std::string>& files);
+std::string filter_section_markdown(const json& results,
+                                    const std::map<std::string, std::string>& files);
 
 /// One warning per file results.json's "filter" section names that `files` lacks.
 std::vector<std::string> missing_filter_files(const json& results,

@@ -46,12 +46,14 @@ struct FileGroup {
 
 /// The groups in results.json's order; a file given but named by no rate (a results.json from
 /// before the "files" list) comes last, so no file given is left out.
-std::vector<FileGroup> file_groups(const json& results, const std::map<std::string, std::string>& files) {
+std::vector<FileGroup> file_groups(const json& results,
+                                   const std::map<std::string, std::string>& files) {
   std::vector<FileGroup> groups;
   std::map<std::string, bool> named;
   if (results.contains("filter") && results["filter"].is_array()) {
     for (const auto& entry : results["filter"]) {
-      FileGroup group{"at " + fmt(entry.value("rate_hz", 0.0)) + " Hz", entry.value("explain", ""), {}};
+      FileGroup group{
+          "at " + fmt(entry.value("rate_hz", 0.0)) + " Hz", entry.value("explain", ""), {}};
       if (entry.contains("files") && entry["files"].is_array()) {
         for (const auto& name : entry["files"]) {
           if (!name.is_string()) continue;
@@ -71,7 +73,8 @@ std::vector<FileGroup> file_groups(const json& results, const std::map<std::stri
 }
 
 /// Said where a file results.json names was not given to the report.
-constexpr const char* kMissingText = "missing: results.json names it, but the report was not given it";
+constexpr const char* kMissingText =
+    "missing: results.json names it, but the report was not given it";
 
 }  // namespace
 
@@ -80,11 +83,20 @@ std::string html_escape(const std::string& s) {
   out.reserve(s.size());
   for (char c : s) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -115,7 +127,8 @@ std::vector<std::string> missing_filter_files(const json& results,
   for (const FileGroup& group : file_groups(results, files)) {
     for (const auto& name : group.names) {
       if (!files.count(name)) {
-        missing.push_back("filter file " + name + " (" + group.title + ") is named in results.json "
+        missing.push_back("filter file " + name + " (" + group.title +
+                          ") is named in results.json "
                           "but was not given to the report: report.html and summary.md cannot "
                           "show it");
       }
@@ -124,21 +137,24 @@ std::vector<std::string> missing_filter_files(const json& results,
   return missing;
 }
 
-std::string filter_section_html(const json& results, const std::map<std::string, std::string>& files) {
+std::string filter_section_html(const json& results,
+                                const std::map<std::string, std::string>& files) {
   const auto groups = file_groups(results, files);
   if (groups.empty()) return "";
-  std::string h = "<h2 id=\"filter\">Filter tuning</h2>\n<p class=\"muted\">For each rate, the "
-                  "filter files written in the same directory as this report (take the one your "
-                  "filter reads, at the rate it runs; click a name to show the file as written, "
-                  "its comment lines saying what the values rest on), then how their values were "
-                  "worked out.</p>\n";
+  std::string h =
+      "<h2 id=\"filter\">Filter tuning</h2>\n<p class=\"muted\">For each rate, the "
+      "filter files written in the same directory as this report (take the one your "
+      "filter reads, at the rate it runs; click a name to show the file as written, "
+      "its comment lines saying what the values rest on), then how their values were "
+      "worked out.</p>\n";
   for (const FileGroup& group : groups) {
     h += "<h3>" + html_escape(group.title) + "</h3>\n";
     if (!group.names.empty()) h += "<div class=\"files\">\n";
     for (const auto& name : group.names) {
       const auto it = files.find(name);
       if (it == files.end()) {
-        h += "<p class=\"file missing\"><code>" + html_escape(name) + "</code>: " + kMissingText + "</p>\n";
+        h += "<p class=\"file missing\"><code>" + html_escape(name) + "</code>: " + kMissingText +
+             "</p>\n";
         continue;
       }
       const std::string purpose = file_purpose(name, it->second);
@@ -149,34 +165,40 @@ std::string filter_section_html(const json& results, const std::map<std::string,
     }
     if (!group.names.empty()) h += "</div>\n";
     if (group.arithmetic.empty()) continue;
-    h += "<p class=\"muted\">How the values " + std::string(group.names.empty() ? "" : "in these files ") +
-         "were worked out:</p>\n" + wrapped_lines_html(group.arithmetic, "arith");
+    h += "<p class=\"muted\">How the values " +
+         std::string(group.names.empty() ? "" : "in these files ") + "were worked out:</p>\n" +
+         wrapped_lines_html(group.arithmetic, "arith");
   }
   return h;
 }
 
-std::string filter_files_line_html(const json& results, const std::map<std::string, std::string>& files) {
+std::string filter_files_line_html(const json& results,
+                                   const std::map<std::string, std::string>& files) {
   std::string links;
   for (const FileGroup& group : file_groups(results, files)) {
     for (const auto& name : group.names) {
-      links += std::string(links.empty() ? "" : ", ") + "<a href=\"#" + html_escape(file_anchor(name)) +
-               "\"><code>" + html_escape(name) + "</code></a>" +
+      links += std::string(links.empty() ? "" : ", ") + "<a href=\"#" +
+               html_escape(file_anchor(name)) + "\"><code>" + html_escape(name) + "</code></a>" +
                (files.count(name) ? "" : " <strong>(missing)</strong>");
     }
   }
   if (links.empty()) return "";
-  return "<p id=\"filter-files\">Filter files, beside this report (shown under <a href=\"#filter\">Filter "
-         "tuning</a>): " + links + ".</p>\n";
+  return "<p id=\"filter-files\">Filter files, beside this report (shown under <a "
+         "href=\"#filter\">Filter "
+         "tuning</a>): " +
+         links + ".</p>\n";
 }
 
-std::string filter_section_markdown(const json& results, const std::map<std::string, std::string>& files) {
+std::string filter_section_markdown(const json& results,
+                                    const std::map<std::string, std::string>& files) {
   const auto groups = file_groups(results, files);
   bool any = false;
   for (const FileGroup& group : groups) any = any || !group.names.empty();
   if (!any) return "";
-  std::string md = "\n## Filter files\n\nWritten beside this summary (their text and arithmetic "
-                   "are in report.html, \"Filter tuning\"); take the one your filter reads, at the "
-                   "rate it runs.\n";
+  std::string md =
+      "\n## Filter files\n\nWritten beside this summary (their text and arithmetic "
+      "are in report.html, \"Filter tuning\"); take the one your filter reads, at the "
+      "rate it runs.\n";
   for (const FileGroup& group : groups) {
     if (group.names.empty()) continue;
     md += "\n" + group.title + ":\n";
