@@ -106,9 +106,9 @@ TEST_CASE("clean Gaussian noise, at any offset and stored as float32, raises no 
 }
 
 TEST_CASE("quantized noise is not flagged for its codes, whatever the noise per LSB") {
-  // Integer codes of noise from 0.2 LSB (97 % of samples on one code: q90 = 0, sigma = 1 LSB)
-  // to 3 LSB; mean off the code grid by 0.3 LSB, as a real bias is.
-  for (const double sigma : {0.2, 0.3, 0.45, 0.7, 1.0, 3.0}) {
+  // Integer codes of noise from 0.1 LSB (98 % of samples on one code: q90 = 0, sigma = d_min =
+  // 1 LSB) to 3 LSB; mean off the code grid by 0.3 LSB, as a real bias is.
+  for (const double sigma : {0.1, 0.2, 0.3, 0.45, 0.7, 1.0, 3.0}) {
     CAPTURE(sigma);
     auto x = white(1000000, 0.3, sigma, 4);
     for (auto& v : x) v = std::round(v);
