@@ -63,19 +63,6 @@ std::string si_rate_unit(const std::optional<ChannelRole>& role) {
   return role->sensor == Sensor::gyro ? "rad/s" : "m/s^2";
 }
 
-/// SI units of the fitted parameters (noise_model.hpp), per sensor.
-std::string parameter_unit(NoiseTerm term, Sensor sensor) {
-  const bool gyro = sensor == Sensor::gyro;
-  switch (term) {
-    case NoiseTerm::quantization: return gyro ? "rad" : "m/s";
-    case NoiseTerm::white: return gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)";
-    case NoiseTerm::bias_instability: return gyro ? "rad/s" : "m/s^2";
-    case NoiseTerm::rate_random_walk: return gyro ? "rad/s^2/sqrt(Hz)" : "m/s^3/sqrt(Hz)";
-    case NoiseTerm::rate_ramp: return gyro ? "rad/s^2" : "m/s^3";
-    default: return "";
-  }
-}
-
 /// Points of the model drawn over the curve: the fitted total and each term's asymptote.
 constexpr int kModelPoints = 60;
 
@@ -87,7 +74,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   for (NoiseTerm term : fit.model_terms) model_terms.push_back(std::string(term_symbol(term)));
   for (const auto& p : fit.parameters) {
     const std::string key(term_symbol(p.term));
-    json entry = {{"unit", parameter_unit(p.term, sensor)}};
+    json entry = {{"unit", std::string(si_unit(p.term, sensor))}};
     if (p.in_model) {
       entry["value"] = p.value;
       entry["ci_low"] = p.ci_low;
@@ -154,7 +141,7 @@ std::string white_noise_gap(const std::string& name, Sensor sensor, const Parame
   const double ratio = n.value / psd;
   if (std::max(ratio, 1 / ratio) <= kWhiteNoiseGap || (n.ci_low <= high && low <= n.ci_high)) return "";
   const std::string unit(display_unit(NoiseTerm::white, sensor));
-  const double f = convert(1.0, sensor == Sensor::gyro ? "rad/s/sqrt(Hz)" : "m/s^2/sqrt(Hz)", unit);
+  const double f = convert(1.0, si_unit(NoiseTerm::white, sensor), unit);
   const auto band = nd.value("band_hz", json::array({0.0, 0.0}));
   char text[900];
   std::snprintf(text, sizeof text,

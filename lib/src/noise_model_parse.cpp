@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/noise_model.hpp"
 #include "sigmatau/units.hpp"
@@ -17,21 +18,18 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-/// The SI unit strings of one sensor's terms (format_noise_terms writes them).
+/// The dimensions of one sensor's terms (parse_noise_terms checks each value against them).
 struct SensorUnits {
   Dimension q, n, b, k, r;
-  const char *q_unit, *n_unit, *b_unit, *k_unit, *r_unit;
 };
 
 SensorUnits units_for(Sensor sensor) {
   if (sensor == Sensor::gyro) {
     return {dim::angle, dim::angle_random_walk, dim::angular_rate, dim::gyro_rate_random_walk,
-            dim::angular_rate_ramp, "rad", "rad/s/sqrt(Hz)", "rad/s", "rad/s^2/sqrt(Hz)",
-            "rad/s^2"};
+            dim::angular_rate_ramp};
   }
   return {dim::velocity, dim::velocity_random_walk, dim::acceleration,
-          dim::accel_rate_random_walk, dim::acceleration_ramp, "m/s", "m/s^2/sqrt(Hz)", "m/s^2",
-          "m/s^3/sqrt(Hz)", "m/s^3"};
+          dim::accel_rate_random_walk, dim::acceleration_ramp};
 }
 
 /// parse_quantity_as, re-thrown with the model context, and checked > 0.
@@ -118,20 +116,24 @@ NoiseTerms parse_noise_terms(std::string_view text, Sensor sensor) {
 }
 
 std::string format_noise_terms(const NoiseTerms& t, Sensor sensor) {
-  const SensorUnits u = units_for(sensor);
   std::string out;
-  const auto add = [&](const std::string& s) { out += (out.empty() ? "" : ", ") + s; };
-  if (t.quantization) add("Q=" + number(*t.quantization) + " " + u.q_unit);
-  if (t.white) add("N=" + number(*t.white) + " " + u.n_unit);
-  if (t.bias_instability) add("B=" + number(*t.bias_instability) + " " + u.b_unit);
-  if (t.rate_random_walk) add("K=" + number(*t.rate_random_walk) + " " + u.k_unit);
-  if (t.rate_ramp) add("R=" + number(*t.rate_ramp) + " " + u.r_unit);
-  if (t.gauss_markov)
-    add("GM=" + number(t.gauss_markov->sigma) + " " + u.b_unit + " @ " +
-        number(t.gauss_markov->tau_c_s) + " s");
-  if (t.sinusoid)
-    add("SIN=" + number(t.sinusoid->amplitude) + " " + u.b_unit + " @ " +
-        number(t.sinusoid->frequency_hz) + " Hz");
+  const auto add = [&](const char* symbol, double value, NoiseTerm term) {
+    out += (out.empty() ? "" : ", ") + std::string(symbol) + "=" + number(value) + " " +
+           std::string(si_unit(term, sensor));
+  };
+  if (t.quantization) add("Q", *t.quantization, NoiseTerm::quantization);
+  if (t.white) add("N", *t.white, NoiseTerm::white);
+  if (t.bias_instability) add("B", *t.bias_instability, NoiseTerm::bias_instability);
+  if (t.rate_random_walk) add("K", *t.rate_random_walk, NoiseTerm::rate_random_walk);
+  if (t.rate_ramp) add("R", *t.rate_ramp, NoiseTerm::rate_ramp);
+  if (t.gauss_markov) {
+    add("GM", t.gauss_markov->sigma, NoiseTerm::gauss_markov);
+    out += " @ " + number(t.gauss_markov->tau_c_s) + " s";
+  }
+  if (t.sinusoid) {
+    add("SIN", t.sinusoid->amplitude, NoiseTerm::sinusoid);
+    out += " @ " + number(t.sinusoid->frequency_hz) + " Hz";
+  }
   return out;
 }
 
