@@ -80,6 +80,17 @@ std::vector<std::string> implausible_units(const std::vector<std::string>& warni
   return names;
 }
 
+/// Channels with an outlier warning (data_checks.hpp: "<channel>: N samples beyond k robust
+/// sigma of their ...").
+std::vector<std::string> outlier_channels(const std::vector<std::string>& warnings) {
+  std::vector<std::string> names;
+  for (const auto& w : warnings) {
+    if (w.find(" robust sigma of their ") == std::string::npos) continue;
+    names.push_back(w.substr(0, w.find(':')));
+  }
+  return names;
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
@@ -100,6 +111,10 @@ std::string warning_banner(const json& results, const std::vector<std::string>& 
   if (!units.empty()) {
     text += "; implausible units for " + joined(units) +
             ": the values look like another unit, so every number from them is off by that factor";
+  }
+  if (const auto spikes = outlier_channels(warnings); !spikes.empty()) {
+    text += "; outliers in " + joined(spikes) +
+            ": they raise the short-tau deviation and N, and nothing was removed";
   }
   return text + ".";
 }

@@ -25,7 +25,10 @@ for f in results.json summary.md report.html; do
   grep -Eq -- "$message" "$W/memory/$f" || fail "$f does not carry the outlier warning"
   if grep -Eq -- '(gy|gz): [0-9]+ samples? beyond' "$W/memory/$f"; then fail "$f flags a clean channel"; fi
 done
-echo "ok: the outlier warning (3 spikes on gx, none on gy, gz) is in results.json, summary.md, report.html"
+for f in summary.md report.html; do
+  grep -Eq -- 'Warning:?.*; outliers in gx: they raise' "$W/memory/$f" || fail "$f: the banner does not name gx's outliers"
+done
+echo "ok: the outlier warning (3 spikes on gx, none on gy, gz) is in results.json, summary.md, report.html and their banners"
 stamp='[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z'
 count=0
 for f in "$W/memory"/*; do
