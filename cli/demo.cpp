@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -116,6 +117,15 @@ DemoNoise demo_noise(const DataSheet& sheet, DensityConvention convention, doubl
   return out;
 }
 
+/// Where the sheet was read: "specs/NAME.yaml" for a shipped sheet, else its path as given
+/// (`--sheet my_imu.yaml`).
+std::string sheet_location(const DataSheet& sheet) {
+  std::error_code error;
+  const bool shipped =
+      std::filesystem::equivalent(sheet.file.parent_path(), resource_dir("specs"), error);
+  return shipped ? "specs/" + sheet.name + ".yaml" : sheet.file.string();
+}
+
 /// The demo log's description (the report's "file"): the sheet, what was simulated and how.
 std::string demo_description(const DataSheet& sheet, const DemoArguments& args,
                              const DemoNoise& noise) {
@@ -129,7 +139,7 @@ std::string demo_description(const DataSheet& sheet, const DemoArguments& args,
   std::snprintf(run, sizeof run, "%g h at %g Hz, seed %llu", args.hours, args.rate_hz,
                 static_cast<unsigned long long>(args.seed));
   return "demo: " + sheet.manufacturer + " " + sheet.part + " (" + sensors +
-         ") simulated from specs/" + sheet.name + ".yaml with " + number(args.scale) + " x " +
+         ") simulated from " + sheet_location(sheet) + " with " + number(args.scale) + " x " +
          terms + " (" + run + ")";
 }
 
@@ -185,7 +195,7 @@ void add_demo_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "demo",
       "Simulate a log from a shipped data sheet and run `analyze` on it (the built-in demo)");
-  command->add_option("--sheet", args->sheet, "data sheet to simulate (name in specs/)")
+  command->add_option("--sheet", args->sheet, "data sheet to simulate (a name in specs/, or a sheet's YAML file)")
       ->capture_default_str();
   command->add_option("--hours", args->hours, "simulated duration [h]")->capture_default_str();
   command->add_option("--rate", args->rate_hz, "simulated sample rate [Hz]")->capture_default_str();

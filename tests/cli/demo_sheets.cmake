@@ -64,3 +64,21 @@ add_test(NAME cli_demo_sheet_max_value_files
                  "-DJSON_NONE=results.json::warnings::."
                  -P ${demo_check})
 set_tests_properties(cli_demo_sheet_max_value_files PROPERTIES DEPENDS cli_demo_sheet_max_value)
+
+# A sheet given by path (find_data_sheet takes a file first): the report's input line names that
+# file, not "specs/NAME.yaml" (which would point at a shipped sheet that does not exist).
+sigmatau_cli_test(NAME cli_demo_sheet_by_path EXIT 0
+  STDOUT "gyro white noise x [|] pass"
+  ARGS demo --sheet ${PROJECT_SOURCE_DIR}/tests/data/specs/good_minimal.yaml --hours 0.2
+       -o ${demo_sheets_dir}/by_path --force)
+add_test(NAME cli_demo_sheet_by_path_files
+         COMMAND ${CMAKE_COMMAND} -DDIR=${demo_sheets_dir}/by_path
+                 "-DJSON_MATCH=results.json::input path::simulated from /.*tests/data/specs/good_minimal[.]yaml with 0[.]8 x"
+                 -P ${demo_check})
+set_tests_properties(cli_demo_sheet_by_path_files PROPERTIES DEPENDS cli_demo_sheet_by_path)
+
+# The LSM6DSO prints noise densities for both sensors (specs/st_lsm6dso.yaml): the demo simulates
+# them at 0.8 x and judges the six white-noise rows (its sheet prints no B or K to judge).
+sigmatau_cli_test(NAME cli_demo_sheet_lsm6dso EXIT 0
+  STDOUT "gyro white noise x [|] pass.*accel white noise z [|] pass"
+  ARGS demo --sheet st_lsm6dso --hours 0.2 -o ${demo_sheets_dir}/lsm6dso --force)
