@@ -102,8 +102,11 @@ TEST_CASE("a sheet with white noise gives it, with no warning, and lists what it
 
 TEST_CASE("the LSM6DSO's noise densities are simulated, its RMS noise is not needed") {
   const DataSheet s = sheet("st_lsm6dso");
-  for (const auto& [sensor, density] : {std::pair{Sensor::gyro, "noise density 3.8 mdps/√Hz"},
-                                        std::pair{Sensor::accel, "noise density 70 µg/√Hz"}}) {
+  for (const auto& row : {std::pair{Sensor::gyro, "noise density 3.8 mdps/√Hz"},
+                          std::pair{Sensor::accel, "noise density 70 µg/√Hz"}}) {
+    // Plain locals: CAPTURE's lambda cannot capture a structured binding before clang 16.
+    const Sensor sensor = row.first;
+    const char* const density = row.second;
     CAPTURE(to_string(sensor));
     const SheetNoise n = simulation_noise_from_data_sheet(s, sensor, DensityConvention::two_sided);
     CHECK(n.has_white);
