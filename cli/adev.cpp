@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "adev_taus.hpp"
 #include "channel_units.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
+#include "outlier_warnings.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
 #include "sigmatau/allan_segments.hpp"
@@ -52,12 +54,35 @@ EdfModel parse_edf_model(const std::string& name) {
   throw Error("--edf must be greenhall or discrete, got \"" + name + "\"");
 }
 
+/// The outlier check of a log read block by block (stream and out-of-core paths): checkers made
+/// at the first block, once the channel names are known, labelled with the channels' units.
+class BlockOutliers {
+ public:
+  explicit BlockOutliers(const LogArguments& args, DataKind kind) : args_(args), kind_(kind) {}
+  /// The next block of every channel `names[c]` (values as held: x LoadedChannels::to_si).
+  void add(const std::vector<std::string>& names, const std::vector<std::vector<double>>& values) {
+    if (!outliers_) {
+      outliers_.emplace(names, channel_units_of(args_, names, sensors_by_name(names), false), kind_);
+    }
+    for (std::size_t c = 0; c < values.size(); ++c) outliers_->add(c, values[c]);
+  }
+  /// The warnings (ChannelOutliers::finish); none when no block was added.
+  std::vector<std::string> finish() { return outliers_ ? outliers_->finish() : std::vector<std::string>{}; }
+
+ private:
+  const LogArguments& args_;
+  DataKind kind_;
+  std::optional<ChannelOutliers> outliers_;
+};
+
 /// Exact curves from a log larger than --memory: the phase goes to temporary files (TMPDIR) and
-/// the file is read twice per group of --threads channels (lib: allan_out_of_core.hpp).
+/// the file is read twice per group of --threads channels (lib: allan_out_of_core.hpp). The
+/// first pass's blocks also go through the outlier check (`outliers` receives its warnings).
 std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
                                                      const std::vector<Statistic>& stats,
                                                      const TauSpec& taus, LoadedChannels& loaded,
-                                                     std::size_t& samples) {
+                                                     std::size_t& samples,
+                                                     std::vector<std::string>& outliers) {
   const LogOptions options = log_options_from(args.log);
   set_input_unit(args.log, loaded);
   Progress progress;
@@ -66,6 +91,10 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   settings.edf_model = parse_edf_model(args.edf);
   settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
   settings.stage = [&](const std::string& label) { progress.stage(label); };
+  BlockOutliers checks(args.log, loaded.kind);
+  settings.first_pass_block = [&](const std::vector<std::string>& names, const SampleBlock& block) {
+    checks.add(names, block.values);
+  };
   OutOfCoreResult result = compute_allan_curves_out_of_core(
       options, loaded.kind, loaded.to_si,
       [&](const TimingReport& timing) {
@@ -83,6 +112,7 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   note_reading(args.log, options, loaded.log.timing);
   loaded.rate_hz = result.rate_hz;
   samples = static_cast<std::size_t>(result.samples);
+  outliers = checks.finish();
   return std::move(result.curves);
 }
 
@@ -269,10 +299,12 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
 
 /// One pass over the input with an AllanStream per channel. On a read error after some samples,
 /// `partial_error` receives the message and the curves describe what was read (when --partial).
+/// The blocks also go through the outlier check (`outliers` receives its warnings).
 std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
                                                 const std::vector<Statistic>& stats,
                                                 const TauSpec& taus, LoadedChannels& loaded,
-                                                std::size_t& samples, std::string& partial_error) {
+                                                std::size_t& samples, std::string& partial_error,
+                                                std::vector<std::string>& outliers) {
   const LogOptions options = log_options_from(args.log);
   set_input_unit(args.log, loaded);
   LogReader reader(options);
@@ -285,6 +317,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   std::vector<AllanStream> streams;
   SampleBlock block;
   Progress progress;
+  BlockOutliers checks(args.log, loaded.kind);
   samples = 0;
   try {
     while (reader.read_block(block)) {
@@ -303,6 +336,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
         }
         streams[c].add(v);
       }
+      checks.add(loaded.log.channel_names, block.values);
       samples += static_cast<std::size_t>(block.rows());
       progress.update(reader.bytes_read(), reader.total_bytes());
     }
@@ -323,6 +357,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
                      "no samples: the input holds no data rows");
   }
+  outliers = checks.finish();
   std::vector<std::vector<AllanCurve>> curves;
   for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
   return curves;
@@ -426,10 +461,12 @@ void run_adev(const AdevArguments& args) {
   // Constant channels: their value from the samples when they are in memory (else empty, and
   // told from the curves below: every deviation 0).
   std::vector<std::optional<double>> constant_value;
+  // Outlier warnings (the check analyze runs), from the samples in memory or block by block.
+  std::vector<std::string> outliers;
   if (out_of_core) {
-    curves = run_out_of_core(args, stats, taus, loaded, samples);
+    curves = run_out_of_core(args, stats, taus, loaded, samples, outliers);
   } else if (stream) {
-    curves = run_stream(args, stats, taus, loaded, samples, partial_error);
+    curves = run_stream(args, stats, taus, loaded, samples, partial_error, outliers);
     if (partial_error.empty()) note_stream_skipped(taus, stats, curves, loaded.rate_hz, args.log.input);
     if (loaded.log.timing.segment_starts.size() > 1) {
       throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
@@ -438,10 +475,14 @@ void run_adev(const AdevArguments& args) {
   } else if (loaded = load_channels(args.log); loaded.log.timing.segment_starts.size() > 1) {
     samples = loaded.log.channels.front().size();
     constant_value = constant_values(loaded);
+    outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
+                                loaded.channel_units, loaded.kind);
     curves = split_curves(args, stats, taus, loaded);
   } else {
     samples = loaded.log.channels.front().size();
     constant_value = constant_values(loaded);
+    outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
+                                loaded.channel_units, loaded.kind);
     std::vector<PhaseSeries> series;
     series.reserve(loaded.log.channels.size());
     for (auto& channel : loaded.log.channels) {
@@ -465,6 +506,10 @@ void run_adev(const AdevArguments& args) {
     }
     warnings.push_back(constant_channel_text(loaded.log.channel_names[c], how) +
                        "; its deviations are 0 and say nothing about the sensor");
+    std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+  }
+  for (const std::string& message : outliers) {
+    warnings.push_back(message);  // analyze's text: it says what spikes do to the deviations
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
   // A noise type that jumps at one tau (a spectral line read as another type) sets that

@@ -147,6 +147,10 @@ void run_psd(const PsdArguments& args) {
                        "; its PSD and noise density are rounding residue, not noise");
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
+  for (const std::string& message : computed.outlier_warnings) {  // analyze's text, as it is
+    warnings.push_back(message);
+    std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+  }
 
   std::vector<PsdCurve> curves;
   std::vector<PsdCurve> plotted;  // log-binned for the plot

@@ -1,6 +1,7 @@
 #include "psd_stream.hpp"
 
 #include "channel_units.hpp"
+#include "outlier_warnings.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -62,7 +63,8 @@ std::int64_t count_rows(const LogOptions& options) {
 
 /// The rate series of one channel, fed to its Welch accumulator with the arithmetic of the
 /// in-memory path (value x to_si, then increment x rate or (x[i+1] - x[i]) x rate). The values
-/// as read also go through a RunChecker, to tell a constant channel.
+/// as read also go through a RunChecker, to tell a constant channel; `values` are left scaled
+/// (x to_si), as load_channels holds them.
 class ChannelFeed {
  public:
   ChannelFeed(std::string name, double rate_hz, const WelchOptions& welch, DataKind kind,
@@ -104,6 +106,8 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
   LoadedChannels& loaded = out.input;
   check_phase_length(loaded.kind, static_cast<std::int64_t>(loaded.log.channels.front().size()));
   const std::vector<std::int64_t>& starts = loaded.log.timing.segment_starts;
+  out.outlier_warnings = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
+                                          loaded.channel_units, loaded.kind);
   for (std::size_t c = 0; c < loaded.log.channels.size(); ++c) {
     auto& channel = loaded.log.channels[c];
     // The samples are in SI here (load_channels): the constant value back in the input unit.
@@ -166,14 +170,22 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
   std::vector<std::vector<double>> held(channels);
   std::int64_t rows = 0;
   std::vector<ChannelFeed> feeds;
+  // The outlier check sees the values as the feeds leave them (x to_si), as in memory.
+  std::optional<ChannelOutliers> outliers;
+  const auto add_values = [&](std::size_t c, std::vector<double>& values) {
+    feeds[c].add(values);
+    outliers->add(c, values);
+  };
   const auto start = [&](std::int64_t segment_length) {
     input.rate_hz = resolve_rate_hz(args.rate_hz, reader.timing(), args.input);
     WelchOptions fixed = welch;
     fixed.segment_length = segment_length;
     feeds.reserve(channels);
+    const std::vector<std::string>& names = input.log.channel_names;
+    outliers.emplace(names, channel_units_of(args, names, sensors_by_name(names), false), kind);
     for (std::size_t c = 0; c < channels; ++c) {
       feeds.emplace_back(input.log.channel_names[c], input.rate_hz, fixed, kind, input.to_si);
-      feeds.back().add(held[c]);
+      add_values(c, held[c]);
       std::vector<double>().swap(held[c]);
     }
   };
@@ -184,7 +196,7 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     rows += block.rows();
     progress.update(reader.bytes_read(), reader.total_bytes());
     if (!feeds.empty()) {
-      for (std::size_t c = 0; c < channels; ++c) feeds[c].add(block.values[c]);
+      for (std::size_t c = 0; c < channels; ++c) add_values(c, block.values[c]);
       continue;
     }
     for (std::size_t c = 0; c < channels; ++c) {
@@ -228,6 +240,7 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     out.curves.push_back(feed.result());
     out.constant_value.push_back(feed.constant_value());
   }
+  out.outlier_warnings = outliers->finish();
   resolve_channel_units(args, input);
   return out;
 }

@@ -3,6 +3,7 @@
 // that memory is bounded by the segments and not by the log's length.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "log_options.hpp"
@@ -17,6 +18,9 @@ struct LogPsd {
   /// Per channel: its value when every sample is the same (a stuck sensor, or precision lost),
   /// in the input unit; nullopt otherwise (runs as check_stuck finds them).
   std::vector<std::optional<double>> constant_value;
+  /// The outlier warnings of the channels (the check analyze runs: outlier_warnings.hpp), in
+  /// channel order; the same whether the log was read into memory or block by block.
+  std::vector<std::string> outlier_warnings;
 };
 
 /// Welch PSD (`welch`; segment_length 0 = default_segment_length of the rate series' length) of
@@ -35,6 +39,7 @@ struct LogPsd {
 ///   change the default length); when it led to another length, the file is read again.
 /// - A rate from the time column is final after its first 100001 stamps (TimingReport): those
 ///   rows are always held.
+/// Every value read also goes through the outlier check (LogPsd::outlier_warnings).
 /// The notes on stderr (note_reading) and the progress line are those of load_channels.
 LogPsd log_psd(const LogArguments& args, const WelchOptions& welch, std::int64_t memory_bytes);
 

@@ -131,6 +131,7 @@ OutOfCoreResult compute_allan_curves_out_of_core(
         }
       }
       for (std::size_t c = group_begin; c < group_end; ++c) builders[c - group_begin].scan(block.values[c]);
+      if (first && settings.first_pass_block) settings.first_pass_block(result.channel_names, block);
     };
     announce("scan", group_begin, std::min<std::size_t>(channels, group_begin + threads));
     const TimingReport timing = read_pass(log, to_si, settings.progress, scan,

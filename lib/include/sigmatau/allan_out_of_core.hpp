@@ -48,6 +48,11 @@ struct OutOfCoreSettings {
   /// (phase, channels 1-2 of 3)": the file is read twice per group of `threads` channels, so a
   /// progress display restarts at 0 % that many times.
   std::function<void(const std::string&)> stage;
+  /// Called in the first read pass after each block with the log's channel names and the block
+  /// (every channel, values in SI: x to_si, in row order), so that a caller can check the values
+  /// (adev's outlier check) without reading the log a third time. Not called in later passes.
+  std::function<void(const std::vector<std::string>& channel_names, const SampleBlock& block)>
+      first_pass_block;
 };
 
 struct OutOfCoreResult {

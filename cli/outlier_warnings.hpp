@@ -1,0 +1,41 @@
+#pragma once
+// The outlier (spike) check of every channel of a log for `adev` and `psd`, the check `analyze`
+// runs (sigmatau::OutlierChecker, data_checks.hpp: blocks of 4096 rows, 8 robust sigma; phase
+// data checked on the differences of consecutive values), with its messages. Fed a whole channel
+// or block by block, it gives the same warnings bit for bit.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "log_options.hpp"
+#include "sigmatau/data_checks.hpp"
+
+namespace sigmatau::cli {
+
+class ChannelOutliers {
+ public:
+  /// One checker per channel `names[c]`. The values fed are the samples as the verb holds them
+  /// (x LoadedChannels::to_si); `units[c]` (one per channel, from channel_units_of or
+  /// resolve_channel_units) labels the values in the messages in the channel's declared unit
+  /// (held value x result_to_si / to_si), unlabelled when the unit is unknown. Throws Error
+  /// when the sizes of `names` and `units` differ.
+  ChannelOutliers(const std::vector<std::string>& names, const std::vector<ChannelUnit>& units,
+                  DataKind kind);
+  /// The next values of channel `channel`, in row order.
+  void add(std::size_t channel, std::span<const double> values);
+  /// The outlier warnings (the library's messages, e.g. "gx: 3 samples beyond 8 robust sigma
+  /// ..."), in channel order; channels without outliers give none. Call once, at the end.
+  std::vector<std::string> finish();
+
+ private:
+  std::vector<OutlierChecker> checkers_;
+};
+
+/// The outlier warnings of channels held in memory (samples x LoadedChannels::to_si), as
+/// ChannelOutliers gives them.
+std::vector<std::string> outlier_warnings(const std::vector<std::vector<double>>& channels,
+                                          const std::vector<std::string>& names,
+                                          const std::vector<ChannelUnit>& units, DataKind kind);
+
+}  // namespace sigmatau::cli
