@@ -30,7 +30,7 @@ std::vector<Candidate> candidates(MeasuredQuantity q, DensityConvention conventi
   switch (q) {
     case MeasuredQuantity::white_noise:
       return {{SpecField::random_walk, 1.0, "measured N against the printed random walk (ARW/VRW)"},
-              {SpecField::noise_density, one_sided ? 1.0 / std::sqrt(2.0) : 1.0,
+              {SpecField::noise_density, white_from_noise_density(1.0, convention),
                one_sided ? "measured N against printed noise density / sqrt(2) (one-sided convention)"
                          : "measured N against printed noise density (two-sided convention: N = ND)",
                one_sided ? "/√2" : ""}};

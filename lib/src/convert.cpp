@@ -196,15 +196,9 @@ TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                          " random walk " + describe(*arw) +
                          " is the Allan N itself (the density convention does not apply)";
   } else if (nd && nd->nominal()) {
-    const double value = nd->nominal()->value_si;
-    if (convention == DensityConvention::two_sided) {
-      terms.white = value;
-      triad.white_origin = "noise density " + describe(*nd) + " read as N = ND (two-sided)";
-    } else {
-      terms.white = value / std::sqrt(2.0);
-      triad.white_origin =
-          "noise density " + describe(*nd) + " read as one-sided: N = ND / sqrt(2)";
-    }
+    terms.white = white_from_noise_density(nd->nominal()->value_si, convention);
+    triad.white_origin =
+        "noise density " + describe(*nd) + " " + std::string(noise_density_reading(convention));
   }
   std::string bias;
   if (const SpecValue* bi = section->find(SpecField::bias_instability); bi && bi->nominal()) {
