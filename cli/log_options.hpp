@@ -33,7 +33,7 @@ struct LogArguments {
   std::string stamp;                          // header|receive; empty: header
   std::optional<std::int64_t> reorder_window; // [messages]; unset: LogOptions' default
   std::string truncated;                      // error|use (a recording cut short); empty: error
-  // Per sensor, instead of --unit (add_sensor_unit_options: adev, psd, fit, analyze).
+  // Per sensor, instead of --unit (add_sensor_unit_options: adev, psd, fit, analyze, calibrate).
   std::string gyro_unit;   // unit of the columns named as gyro axes (classify_channel)
   std::string accel_unit;  // unit of the columns named as accelerometer axes
 };
