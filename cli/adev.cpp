@@ -54,27 +54,6 @@ EdfModel parse_edf_model(const std::string& name) {
   throw Error("--edf must be greenhall or discrete, got \"" + name + "\"");
 }
 
-/// The outlier check of a log read block by block (stream and out-of-core paths): checkers made
-/// at the first block, once the channel names are known, labelled with the channels' units.
-class BlockOutliers {
- public:
-  explicit BlockOutliers(const LogArguments& args, DataKind kind) : args_(args), kind_(kind) {}
-  /// The next block of every channel `names[c]` (values as held: x LoadedChannels::to_si).
-  void add(const std::vector<std::string>& names, const std::vector<std::vector<double>>& values) {
-    if (!outliers_) {
-      outliers_.emplace(names, channel_units_of(args_, names, sensors_by_name(names), false), kind_);
-    }
-    for (std::size_t c = 0; c < values.size(); ++c) outliers_->add(c, values[c]);
-  }
-  /// The warnings (ChannelOutliers::finish); none when no block was added.
-  std::vector<std::string> finish() { return outliers_ ? outliers_->finish() : std::vector<std::string>{}; }
-
- private:
-  const LogArguments& args_;
-  DataKind kind_;
-  std::optional<ChannelOutliers> outliers_;
-};
-
 /// Exact curves from a log larger than --memory: the phase goes to temporary files (TMPDIR) and
 /// the file is read twice per group of --threads channels (lib: allan_out_of_core.hpp). The
 /// first pass's blocks also go through the outlier check (`outliers` receives its warnings).

@@ -1,5 +1,6 @@
 #include "outlier_warnings.hpp"
 
+#include "channel_units.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::cli {
@@ -32,6 +33,34 @@ std::vector<std::string> ChannelOutliers::finish() {
     if (const auto w = checker.finish()) messages.push_back(w->message);
   }
   return messages;
+}
+
+BlockOutliers::BlockOutliers(const LogArguments& args, DataKind kind) : args_(args), kind_(kind) {}
+
+BlockOutliers::~BlockOutliers() {
+  if (job_.valid()) job_.wait();  // an exception elsewhere: its result is not wanted
+}
+
+void BlockOutliers::wait() {
+  if (job_.valid()) job_.get();
+}
+
+void BlockOutliers::add(const std::vector<std::string>& names,
+                        const std::vector<std::vector<double>>& values) {
+  wait();
+  if (!outliers_) {
+    outliers_.emplace(names, channel_units_of(args_, names, sensors_by_name(names), false), kind_);
+  }
+  copy_.resize(values.size());
+  for (std::size_t c = 0; c < values.size(); ++c) copy_[c].assign(values[c].begin(), values[c].end());
+  job_ = std::async(std::launch::async, [this] {
+    for (std::size_t c = 0; c < copy_.size(); ++c) outliers_->add(c, copy_[c]);
+  });
+}
+
+std::vector<std::string> BlockOutliers::finish() {
+  wait();
+  return outliers_ ? outliers_->finish() : std::vector<std::string>{};
 }
 
 std::vector<std::string> outlier_warnings(const std::vector<std::vector<double>>& channels,

@@ -4,6 +4,8 @@
 // data checked on the differences of consecutive values), with its messages. Fed a whole channel
 // or block by block, it gives the same warnings bit for bit.
 #include <cstddef>
+#include <future>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,6 +32,31 @@ class ChannelOutliers {
 
  private:
   std::vector<OutlierChecker> checkers_;
+};
+
+/// ChannelOutliers for a log read block by block (adev's stream and out-of-core paths): the
+/// checkers are made at the first block, once the channel names are known, with the channels'
+/// units (channel_units_of, without notes). Each block is copied and checked on a worker thread
+/// while the caller goes on (its own sums, the next read); blocks are checked one at a time and
+/// in order, so the warnings are ChannelOutliers', bit for bit. Memory: one copy of a block.
+class BlockOutliers {
+ public:
+  BlockOutliers(const LogArguments& args, DataKind kind);
+  BlockOutliers(const BlockOutliers&) = delete;
+  BlockOutliers& operator=(const BlockOutliers&) = delete;
+  ~BlockOutliers();  ///< waits for the block being checked
+  /// The next block of every channel `names[c]` (values as held: x LoadedChannels::to_si).
+  void add(const std::vector<std::string>& names, const std::vector<std::vector<double>>& values);
+  /// The warnings (ChannelOutliers::finish); none when no block was added. Call once, at the end.
+  std::vector<std::string> finish();
+
+ private:
+  void wait();  ///< for the block being checked; rethrows what its check threw
+  const LogArguments& args_;
+  DataKind kind_;
+  std::optional<ChannelOutliers> outliers_;
+  std::vector<std::vector<double>> copy_;  ///< the block being checked
+  std::future<void> job_;                  ///< last: destroyed (joined) first
 };
 
 /// The outlier warnings of channels held in memory (samples x LoadedChannels::to_si), as
