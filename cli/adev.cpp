@@ -70,7 +70,7 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
   settings.edf_model = parse_edf_model(args.edf);
   settings.progress = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
   settings.stage = [&](const std::string& label) { progress.stage(label); };
-  BlockOutliers checks(args.log, loaded.kind);
+  BlockOutliers checks(args.log, loaded.kind, args.threads != 1);
   settings.first_pass_block = [&](const std::vector<std::string>& names, const SampleBlock& block) {
     checks.add(names, block.values);
   };
@@ -296,7 +296,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   std::vector<AllanStream> streams;
   SampleBlock block;
   Progress progress;
-  BlockOutliers checks(args.log, loaded.kind);
+  BlockOutliers checks(args.log, loaded.kind, args.threads != 1);
   samples = 0;
   try {
     while (reader.read_block(block)) {

@@ -35,7 +35,8 @@ std::vector<std::string> ChannelOutliers::finish() {
   return messages;
 }
 
-BlockOutliers::BlockOutliers(const LogArguments& args, DataKind kind) : args_(args), kind_(kind) {}
+BlockOutliers::BlockOutliers(const LogArguments& args, DataKind kind, bool background)
+    : args_(args), kind_(kind), background_(background) {}
 
 BlockOutliers::~BlockOutliers() {
   if (job_.valid()) job_.wait();  // an exception elsewhere: its result is not wanted
@@ -46,10 +47,14 @@ void BlockOutliers::wait() {
 }
 
 void BlockOutliers::add(const std::vector<std::string>& names,
-                        const std::vector<std::vector<double>>& values) {
+                        const std::vector<std::vector<double>>& values, bool in_background) {
   wait();
   if (!outliers_) {
     outliers_.emplace(names, channel_units_of(args_, names, sensors_by_name(names), false), kind_);
+  }
+  if (!in_background || !background_) {
+    for (std::size_t c = 0; c < values.size(); ++c) outliers_->add(c, values[c]);
+    return;
   }
   copy_.resize(values.size());
   for (std::size_t c = 0; c < values.size(); ++c) copy_[c].assign(values[c].begin(), values[c].end());

@@ -15,6 +15,7 @@
 
 namespace sigmatau::cli {
 
+/// One OutlierChecker per channel, with analyze's options; values fed in row order, in any pieces.
 class ChannelOutliers {
  public:
   /// One checker per channel `names[c]`. The values fed are the samples as the verb holds them
@@ -34,19 +35,23 @@ class ChannelOutliers {
   std::vector<OutlierChecker> checkers_;
 };
 
-/// ChannelOutliers for a log read block by block (adev's stream and out-of-core paths): the
+/// ChannelOutliers for a log read block by block (adev's stream and out-of-core paths, psd): the
 /// checkers are made at the first block, once the channel names are known, with the channels'
 /// units (channel_units_of, without notes). Each block is copied and checked on a worker thread
 /// while the caller goes on (its own sums, the next read); blocks are checked one at a time and
 /// in order, so the warnings are ChannelOutliers', bit for bit. Memory: one copy of a block.
 class BlockOutliers {
  public:
-  BlockOutliers(const LogArguments& args, DataKind kind);
+  /// `background` false: every block is checked on the caller's thread (adev --threads 1).
+  BlockOutliers(const LogArguments& args, DataKind kind, bool background = true);
   BlockOutliers(const BlockOutliers&) = delete;
   BlockOutliers& operator=(const BlockOutliers&) = delete;
   ~BlockOutliers();  ///< waits for the block being checked
-  /// The next block of every channel `names[c]` (values as held: x LoadedChannels::to_si).
-  void add(const std::vector<std::string>& names, const std::vector<std::vector<double>>& values);
+  /// The next block of every channel `names[c]` (values as held: x LoadedChannels::to_si),
+  /// checked on the worker thread, or on the caller's without a copy when not `in_background`
+  /// (a large block, e.g. the rows psd holds before its segment length is known).
+  void add(const std::vector<std::string>& names, const std::vector<std::vector<double>>& values,
+           bool in_background = true);
   /// The warnings (ChannelOutliers::finish); none when no block was added. Call once, at the end.
   std::vector<std::string> finish();
 
@@ -54,6 +59,7 @@ class BlockOutliers {
   void wait();  ///< for the block being checked; rethrows what its check threw
   const LogArguments& args_;
   DataKind kind_;
+  bool background_;
   std::optional<ChannelOutliers> outliers_;
   std::vector<std::vector<double>> copy_;  ///< the block being checked
   std::future<void> job_;                  ///< last: destroyed (joined) first

@@ -171,23 +171,18 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
   std::int64_t rows = 0;
   std::vector<ChannelFeed> feeds;
   // The outlier check sees the values as the feeds leave them (x to_si), as in memory.
-  std::optional<ChannelOutliers> outliers;
-  const auto add_values = [&](std::size_t c, std::vector<double>& values) {
-    feeds[c].add(values);
-    outliers->add(c, values);
-  };
+  BlockOutliers outliers(args, kind);
   const auto start = [&](std::int64_t segment_length) {
     input.rate_hz = resolve_rate_hz(args.rate_hz, reader.timing(), args.input);
     WelchOptions fixed = welch;
     fixed.segment_length = segment_length;
     feeds.reserve(channels);
-    const std::vector<std::string>& names = input.log.channel_names;
-    outliers.emplace(names, channel_units_of(args, names, sensors_by_name(names), false), kind);
     for (std::size_t c = 0; c < channels; ++c) {
       feeds.emplace_back(input.log.channel_names[c], input.rate_hz, fixed, kind, input.to_si);
-      add_values(c, held[c]);
-      std::vector<double>().swap(held[c]);
+      feeds.back().add(held[c]);
     }
+    outliers.add(input.log.channel_names, held, false);  // up to --memory: checked in place
+    for (auto& values : held) std::vector<double>().swap(values);
   };
 
   SampleBlock block;
@@ -196,7 +191,8 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     rows += block.rows();
     progress.update(reader.bytes_read(), reader.total_bytes());
     if (!feeds.empty()) {
-      for (std::size_t c = 0; c < channels; ++c) add_values(c, block.values[c]);
+      for (std::size_t c = 0; c < channels; ++c) feeds[c].add(block.values[c]);
+      outliers.add(input.log.channel_names, block.values);
       continue;
     }
     for (std::size_t c = 0; c < channels; ++c) {
@@ -240,7 +236,7 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     out.curves.push_back(feed.result());
     out.constant_value.push_back(feed.constant_value());
   }
-  out.outlier_warnings = outliers->finish();
+  out.outlier_warnings = outliers.finish();
   resolve_channel_units(args, input);
   return out;
 }

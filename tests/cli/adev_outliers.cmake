@@ -3,7 +3,8 @@
 # the count and the first and largest rows and values in the declared unit, and it is the same
 # text in every mode: adev exact in memory, exact out of core (--memory 1K: the file is read
 # twice, the check rides on the first pass) and --mode stream (block by block); psd in memory
-# (--gaps split) and block by block. A clean channel gets none.
+# (--gaps split) and block by block. A clean channel gets none. (That the check gives the same
+# result however the values are split is test_outlier_check's; here the verbs' wiring.)
 #
 # The log: 140,000 rows at 100 Hz, i.e. three reader blocks of up to 65536 rows, so the stream
 # and out-of-core checks see the values in pieces (34 outlier blocks of 4096 rows and a tail of
@@ -44,6 +45,10 @@ check out_of_core "$W/ooc.json"
 run adev "$W/spiky.csv" --rate 100 --gyro-unit deg/s --format json -o "$W/stream.json" --mode stream
 expect 0 ""
 check stream "$W/stream.json"
+# --threads 1: the blocks are checked on the reading thread instead of a worker.
+run adev "$W/spiky.csv" --rate 100 --gyro-unit deg/s --format json -o "$W/stream1.json" --mode stream --threads 1
+expect 0 ""
+check stream_threads_1 "$W/stream1.json"
 # --unit: the samples are scaled to SI as they are read; the message still shows deg/s.
 run adev "$W/spiky.csv" --rate 100 --unit deg/s --format json -o "$W/unit.json" --mode stream
 expect 0 ""
@@ -55,7 +60,7 @@ awk 'NR == 1 { print "t," $0; next } { printf "%.2f,%s\n", (NR - 2) / 100, $0 }'
 run psd "$W/timed.csv" --time-column t --gaps split --gyro-unit deg/s --format json -o "$W/psd_memory.json"
 expect 0 ""
 check psd_memory "$W/psd_memory.json"
-for mode in out_of_core stream unit psd_blocks psd_memory; do
+for mode in out_of_core stream stream_threads_1 unit psd_blocks psd_memory; do
   cmp -s "$W/exact.line" "$W/$mode.line" || fail "$mode's outlier warning differs from exact's: $(cat "$W/$mode.line")"
 done
 echo "ok: the same outlier warning in every mode of adev and psd"
