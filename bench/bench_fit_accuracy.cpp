@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
           std::snprintf(text, sizeof text, "%s%s: kept %d of %d (%.1f%%), interval covers %d (%.1f%%), "
                         "median value/truth %.2f",
                         flagged ? "; " : "",
-                        flagged ? "no floor (warned)" : "with a floor",
+                        flagged ? "no floor (warned)" : "not warned",
                         static_cast<int>(r.size()), runs, 100.0 * static_cast<double>(r.size()) / runs,
                         t.kept_covered[flagged],
                         r.empty() ? 0.0 : 100.0 * t.kept_covered[flagged] / static_cast<double>(r.size()),
