@@ -30,7 +30,7 @@ struct DemoArguments {
   std::string sheet = "safran_stim300";
   /// Simulated duration [h]. 10 h: the STIM300's weak flicker floor shows only at the last taus
   /// of a 3 h log, whose verdict on the gyro's bias instability was marginal or fail in 7 of 12
-  /// seeds at 0.8 x typical (all pass in 12 of 12 at 10 h; ~1 GB peak, ~5-10 s once built).
+  /// seeds at 0.8 x typical (all pass in 12 of 12 at 10 h; ~1 GB peak, about 4 s once built).
   double hours = 10.0;
   double rate_hz = 100.0;  ///< simulated sample rate [Hz]
   std::uint64_t seed = 1;
