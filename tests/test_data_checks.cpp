@@ -15,13 +15,7 @@ using namespace sigmatau;
 
 namespace {
 
-std::vector<double> white(std::size_t n, double mean, double sigma, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal(mean, sigma);
-  std::vector<double> x(n);
-  for (auto& v : x) v = normal(rng);
-  return x;
-}
+using test::white;
 
 /// Quantized to integer counts (an i16 sensor), clipped at +-limit like an ADC.
 std::vector<double> counts(std::vector<double> x, double limit) {

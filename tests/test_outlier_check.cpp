@@ -21,13 +21,7 @@ using namespace sigmatau;
 
 namespace {
 
-std::vector<double> white(std::size_t n, double mean, double sigma, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal(mean, sigma);
-  std::vector<double> x(n);
-  for (auto& v : x) v = normal(rng);
-  return x;
-}
+using test::white;
 
 /// Feeds `x` to a checker in pieces of random length 1..max_piece and returns its warning.
 std::optional<DataWarning> in_pieces(const std::vector<double>& x, std::size_t max_piece,

@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <cstdint>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "sigmatau/error.hpp"
 
@@ -27,6 +30,15 @@ inline doctest::Approx rel(double expected, double rtol) {
     INFO(#a " = " << sigmatau_a_ << ", " #b " = " << sigmatau_b_ << ", rtol = " << (rtol)); \
     CHECK(std::abs(sigmatau_a_ - sigmatau_b_) <= (rtol) * std::abs(sigmatau_b_));       \
   } while (0)
+
+/// n Gaussian values of `mean` and standard deviation `sigma` (std::mt19937_64 from `seed`).
+inline std::vector<double> white(std::size_t n, double mean, double sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(mean, sigma);
+  std::vector<double> x(n);
+  for (auto& v : x) v = normal(rng);
+  return x;
+}
 
 /// Reference data root (configured with -DSIGMATAU_DATA_DIR, default ../shared/data).
 inline std::filesystem::path reference_data_dir() { return SIGMATAU_DATA_DIR; }
