@@ -193,11 +193,16 @@ std::optional<DataWarning> OutlierChecker::finish() {
   const std::string what = options_.differences ? (w.runs == 1 ? " difference" : " differences") +
                                                       std::string(" of consecutive samples")
                                                 : (w.runs == 1 ? " sample" : " samples");
+  // Phase data: a difference is a frequency sample, and a spike in it a step in the phase.
+  const std::string effect =
+      options_.differences
+          ? "steps in the phase, spikes in the frequency: they raise the deviation at short taus"
+          : "outliers or spikes: they raise the Allan deviation at short taus and the white-noise "
+            "level N";
   w.message = w.channel + ": " + std::to_string(w.runs) + what + " beyond " +
               format_sigma(options_.threshold_sigma) + " robust sigma of their " +
               std::to_string(options_.block_rows) +
-              "-row block (outliers or spikes: they raise the Allan deviation at short taus and "
-              "the white-noise level N); largest " +
+              "-row block (" + effect + "); largest " +
               format_sigma(w.largest_sigma) + " sigma (" + format_value(w.value / to_si_, unit_) +
               ") at row " + std::to_string(w.longest_row) + ", first at row " +
               std::to_string(w.first_row) + " (" + format_value(w.first_value / to_si_, unit_) +

@@ -79,7 +79,7 @@ awk 'BEGIN { srand(5); print "p"; x = 0;
     a = 0; for (k = 0; k < 12; k++) a += rand();
     d = 0.01 * (a - 6); if (i == 5000) d = 0.5;
     x += d; printf "%.6f\n", x } }' >"$W/phase.csv"
-phase='p: 1 difference of consecutive samples beyond 8 robust sigma of their 4096-row block .*at row 5000, first at row 5000'
+phase='p: 1 difference of consecutive samples beyond 8 robust sigma of their 4096-row block \(steps in the phase, spikes in the frequency: they raise the deviation at short taus\); .*at row 5000, first at row 5000'
 for mode in "--mode exact" "--memory 1K" "--mode stream"; do
   # shellcheck disable=SC2086
   run adev "$W/phase.csv" --rate 100 --kind phase $mode --format json -o "$W/phase.json" --force
