@@ -143,12 +143,7 @@ int main(int argc, char** argv) {
     for (const NoiseTerm t : kFitTerms) {
       if (has_term(truth, t)) true_terms.push_back(t);
     }
-    SimulationConfig config;
-    config.rate_hz = profile.rate_hz;
-    config.samples = static_cast<std::int64_t>(std::llround(profile.hours * 3600 * profile.rate_hz));
-    ErrorModel model;
-    model.noise = {truth, truth, truth};
-    (profile.sensor == Sensor::gyro ? config.gyro : config.accel) = model;
+    SimulationConfig config = simulation_config(profile, truth);
 
     MethodTally joint, slopes, told;  // told: the joint fit given the true terms
     // Spread of the estimates at each tau, to set beside the exact covariance the fit weights

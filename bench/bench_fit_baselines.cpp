@@ -152,12 +152,7 @@ int main(int argc, char** argv) {
     for (const NoiseTerm t : kParams) {
       if (has_term(truth, t)) params.push_back(t);
     }
-    SimulationConfig config;
-    config.rate_hz = profile.rate_hz;
-    config.samples = static_cast<std::int64_t>(std::llround(profile.hours * 3600 * profile.rate_hz));
-    ErrorModel model;
-    model.noise = {truth, truth, truth};
-    (profile.sensor == Sensor::gyro ? config.gyro : config.accel) = model;
+    SimulationConfig config = simulation_config(profile, truth);
     const bool accel = profile.sensor == Sensor::accel;
     const double iu_unit = accel ? 1.0 : kImuUtilsGyroUnit;
     const double tau0 = 1 / profile.rate_hz;

@@ -1,10 +1,13 @@
 #pragma once
 // The simulated profiles with known truth that the fit benchmarks share (bench_fit_accuracy,
 // bench_fit_baselines): the same names, truths, rates and lengths in both tables.
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "sigmatau/noise_model.hpp"
+#include "sigmatau/simulate.hpp"
 
 namespace sigmatau::bench {
 
@@ -65,6 +68,18 @@ inline double truth_of(const NoiseTerms& t, NoiseTerm term) {
     case NoiseTerm::rate_ramp: return t.rate_ramp.value_or(0);
     default: return 0;
   }
+}
+
+/// The simulation of a profile: its rate and length, `truth` (the profile's model, parsed) on
+/// all three axes of its sensor; the seed is left for each run to set.
+inline SimulationConfig simulation_config(const Profile& profile, const NoiseTerms& truth) {
+  SimulationConfig config;
+  config.rate_hz = profile.rate_hz;
+  config.samples = static_cast<std::int64_t>(std::llround(profile.hours * 3600 * profile.rate_hz));
+  ErrorModel model;
+  model.noise = {truth, truth, truth};
+  (profile.sensor == Sensor::gyro ? config.gyro : config.accel) = model;
+  return config;
 }
 
 }  // namespace sigmatau::bench
