@@ -298,48 +298,81 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   Progress progress;
   BlockOutliers checks(args.log, loaded.kind, args.threads != 1);
   samples = 0;
+  const auto take = [&](SampleBlock& rows) {
+    if (streams.empty()) {
+      // The sample interval is fixed from the first block (the time column's median interval
+      // so far, or --rate): a stream cannot wait for the end of the log.
+      loaded.rate_hz = resolve_rate_hz(args.log.rate_hz, reader.timing(), args.log.input);
+      for (std::size_t c = 0; c < rows.values.size(); ++c) {
+        streams.emplace_back(loaded.kind, 1.0 / loaded.rate_hz, settings);
+      }
+    }
+    for (std::size_t c = 0; c < rows.values.size(); ++c) {
+      auto& v = rows.values[c];
+      if (loaded.to_si != 1.0) {
+        for (double& x : v) x *= loaded.to_si;
+      }
+      streams[c].add(v);
+    }
+    checks.add(loaded.log.channel_names, rows.values);
+    samples += static_cast<std::size_t>(rows.rows());
+  };
   try {
     while (reader.read_block(block)) {
-      if (streams.empty()) {
-        // The sample interval is fixed from the first block (the time column's median interval
-        // so far, or --rate): a stream cannot wait for the end of the log.
-        loaded.rate_hz = resolve_rate_hz(args.log.rate_hz, reader.timing(), args.log.input);
-        for (std::size_t c = 0; c < block.values.size(); ++c) {
-          streams.emplace_back(loaded.kind, 1.0 / loaded.rate_hz, settings);
-        }
-      }
-      for (std::size_t c = 0; c < block.values.size(); ++c) {
-        auto& v = block.values[c];
-        if (loaded.to_si != 1.0) {
-          for (double& x : v) x *= loaded.to_si;
-        }
-        streams[c].add(v);
-      }
-      checks.add(loaded.log.channel_names, block.values);
-      samples += static_cast<std::size_t>(block.rows());
+      take(block);
       progress.update(reader.bytes_read(), reader.total_bytes());
     }
   } catch (const Error& e) {
     if (!args.partial) throw;
-    if (samples == 0) {
-      // Said, not left to guess: --partial was asked for, but there is nothing to write.
-      throw Error(std::string(e.what()) +
-                  " (--partial: no results written: the error comes before the first complete "
-                  "block of samples)");
-    }
     partial_error = e.what();
+    // The reader leaves the whole rows before the one in error in the block: kept too. Taking
+    // the first block fixes the sample interval, which can fail (no --rate, too few stamps).
+    try {
+      if (block.rows() > 0) take(block);
+    } catch (const Error& rate) {
+      throw Error(partial_error + " (--partial: no results written: " + rate.what() + ")");
+    }
   }
   progress.finish();
   loaded.log.timing = reader.timing();
   note_reading(args.log, options, loaded.log.timing);
+  std::vector<std::vector<AllanCurve>> curves;
+  for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
+  if (!partial_error.empty()) {
+    bool any_point = false;
+    for (const auto& per_statistic : curves) {
+      for (const AllanCurve& curve : per_statistic) any_point = any_point || !curve.points.empty();
+    }
+    if (!any_point) {
+      // Said, not left to guess: --partial was asked for, but there is nothing to write.
+      const std::string read = samples == 1 ? "the 1 sample read before it reaches"
+                                            : "the " + std::to_string(samples) +
+                                                  " samples read before it reach";
+      throw Error(partial_error + " (--partial: no results written: " + read + " no tau)");
+    }
+  }
   if (streams.empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,
                      "no samples: the input holds no data rows");
   }
   outliers = checks.finish();
-  std::vector<std::vector<AllanCurve>> curves;
-  for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
   return curves;
+}
+
+/// Exact mode in memory on a log without gaps: every channel's phase, then the curves. The raw
+/// samples are released channel by channel as their phase is built.
+std::vector<std::vector<AllanCurve>> whole_log_curves(const AdevArguments& args,
+                                                      const std::vector<Statistic>& stats,
+                                                      const TauSpec& taus, EdfModel edf_model,
+                                                      LoadedChannels& loaded) {
+  std::vector<PhaseSeries> series;
+  series.reserve(loaded.log.channels.size());
+  for (auto& channel : loaded.log.channels) {
+    series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+    std::vector<double>().swap(channel);
+  }
+  return curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,
+                              args.log.input);
 }
 
 /// --gaps split with more than one segment: every contiguous segment of each channel is its own
@@ -451,25 +484,15 @@ void run_adev(const AdevArguments& args) {
       throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
                   "(" + std::to_string(loaded.log.timing.segment_starts.size()) + " segments)");
     }
-  } else if (loaded = load_channels(args.log); loaded.log.timing.segment_starts.size() > 1) {
-    samples = loaded.log.channels.front().size();
-    constant_value = constant_values(loaded);
-    outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
-                                loaded.channel_units, loaded.kind);
-    curves = split_curves(args, stats, taus, loaded);
   } else {
+    loaded = load_channels(args.log);
     samples = loaded.log.channels.front().size();
     constant_value = constant_values(loaded);
     outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
                                 loaded.channel_units, loaded.kind);
-    std::vector<PhaseSeries> series;
-    series.reserve(loaded.log.channels.size());
-    for (auto& channel : loaded.log.channels) {
-      series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
-      std::vector<double>().swap(channel);  // the raw samples are no longer needed
-    }
-    curves = curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,
-                                  args.log.input);
+    curves = loaded.log.timing.segment_starts.size() > 1
+                 ? split_curves(args, stats, taus, loaded)
+                 : whole_log_curves(args, stats, taus, edf_model, loaded);
   }
   std::vector<std::string> warnings;
   for (std::size_t c = 0; c < curves.size(); ++c) {

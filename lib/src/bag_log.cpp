@@ -336,10 +336,10 @@ std::int64_t BagLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
       }
       fail_nonfinite(s);
     }
-    for (std::size_t c = 0; c < channels; ++c) block.values[c].push_back(row[c]);
     const TimeStamp stamp{key(s) - first_ns_, 0.0};
+    timing_.add(stamp, 0);  // before the row enters the block: a throw leaves whole rows only
+    for (std::size_t c = 0; c < channels; ++c) block.values[c].push_back(row[c]);
     block.t_s.push_back(timing_.seconds(stamp));
-    timing_.add(stamp, 0);
     ++rows;
   }
   return rows;

@@ -151,6 +151,17 @@ std::int64_t BinaryLog::decode(SampleBlock& block, std::int64_t records) {
 
 std::int64_t BinaryLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
   std::int64_t rows = 0;
+  try {
+    read_records(block, max_rows, rows);
+  } catch (...) {
+    timing_.add_untimed(block.rows());  // the whole rows decoded before the error are counted
+    throw;
+  }
+  timing_.add_untimed(rows);
+  return rows;
+}
+
+void BinaryLog::read_records(SampleBlock& block, std::int64_t max_rows, std::int64_t& rows) {
   while (rows < max_rows && fill()) {
     const auto available = static_cast<std::int64_t>((end_ - pos_) / record_bytes_);
     const std::int64_t n = std::min(available, max_rows - rows);
@@ -175,8 +186,6 @@ std::int64_t BinaryLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
     records_ += n;
     rows += kept;
   }
-  timing_.add_untimed(rows);
-  return rows;
 }
 
 }  // namespace sigmatau::detail

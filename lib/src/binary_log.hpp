@@ -22,6 +22,8 @@ class BinaryLog {
 
  private:
   bool fill();
+  /// read_rows' loop: `rows` counts the records kept so far (also when it throws).
+  void read_records(SampleBlock& block, std::int64_t max_rows, std::int64_t& rows);
   template <class T, bool kSwap>
   std::int64_t decode(SampleBlock& block, std::int64_t records);
 

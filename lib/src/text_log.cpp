@@ -302,20 +302,25 @@ std::int64_t TextLog::read_rows_as(SampleBlock& block, std::int64_t max_rows) {
   std::int64_t rows = 0;
   const char* b = nullptr;
   const char* e = nullptr;
-  while (rows < max_rows && next_line(b, e)) {
-    if (e != b && e[-1] == '\r') --e;
-    const char* p = skip_blanks(b, e);
-    if (p == e || *p == '#' || *p == '%') continue;
-    if (!parse_row<M>(b, e)) {
-      timing_.add_skipped();
-      continue;
+  try {
+    while (rows < max_rows && next_line(b, e)) {
+      if (e != b && e[-1] == '\r') --e;
+      const char* p = skip_blanks(b, e);
+      if (p == e || *p == '#' || *p == '%') continue;
+      if (!parse_row<M>(b, e)) {
+        timing_.add_skipped();
+        continue;
+      }
+      // Every check that can throw comes before the row enters the block (timing_.add refuses
+      // a time column with too many segments): on a throw the block holds whole rows only.
+      if (timed) timing_.add(stamp_, line_);
+      for (std::size_t k = 0; k < channels; ++k) block.values[k].push_back(row_[k]);
+      if (timed) block.t_s.push_back(timing_.seconds(stamp_));
+      ++rows;
     }
-    for (std::size_t k = 0; k < channels; ++k) block.values[k].push_back(row_[k]);
-    if (timed) {
-      block.t_s.push_back(timing_.seconds(stamp_));
-      timing_.add(stamp_, line_);
-    }
-    ++rows;
+  } catch (...) {
+    if (!timed) timing_.add_untimed(rows);  // the rows kept before the error are counted
+    throw;
   }
   if (!timed) timing_.add_untimed(rows);
   return rows;

@@ -96,10 +96,11 @@ sigmatau_cli_test(NAME cli_audit_analyze_accel_unit_without_accel EXIT 2
   NO_FILE ${audit_out}/analyze_accel_unit
   ARGS analyze ${audit_log} --time-column t --accel-unit deg/s -o ${audit_out}/analyze_accel_unit)
 
-# adev --mode stream --partial with the error inside the first block of samples: nothing can be
-# written, and the message now says so instead of leaving the user to look for a partial file.
+# adev --mode stream --partial with the error on the second data row: the one row before it
+# reaches no tau, so nothing can be written, and the message says so instead of leaving the
+# user to look for a partial file.
 sigmatau_cli_test(NAME cli_audit_adev_partial_nothing_read EXIT 2
-  STDERR ":3:2: expected a number, found \"abc\" \\(--partial: no results written: the error comes before the first complete block"
+  STDERR ":3:2: expected a number, found \"abc\" \\(--partial: no results written: the 1 sample read before it reaches no tau\\)"
   NO_FILE ${audit_out}/partial_nothing.txt
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/bad/non_numeric.csv --rate 100 --mode stream --partial
        -o ${audit_out}/partial_nothing.txt)

@@ -19,19 +19,30 @@ sigmatau_cli_test(NAME cli_long_logs_stream_stdin EXIT 0
   STDIN ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv
   STDOUT "\"channel\": \"gy\"" ARGS adev - --time-column t --format json --mode stream)
 
-# A record cut short: exit 2 naming the byte offset. With --partial, results for the blocks
-# read before the error are written and the exit code stays 2 (checked by hand on a 4.8 MB file:
-# a test input larger than the 4 MiB read buffer is not kept in the repository).
+# A record cut short: exit 2 naming the byte offset, and no output.
 sigmatau_cli_test(NAME cli_long_logs_truncated EXIT 2 STDERR "truncated record at byte offset"
   NO_FILE ${out_dir}/truncated.csv
   ARGS adev ${truncated} --binary f64 --channels 2 --rate 100 --mode stream
        --format csv -o ${out_dir}/truncated.csv)
-# Here the error comes with the first block (the reader drops that block's complete rows), so
-# there is nothing to report: --partial still exits 2 with the error and writes no file.
-sigmatau_cli_test(NAME cli_long_logs_truncated_partial EXIT 2 STDERR "truncated record"
-  NO_FILE ${out_dir}/truncated_partial.csv
+# With --partial the results for every whole record before the cut are written and the exit code
+# stays 2. The cut comes inside the first 65536-row block: those rows used to be dropped, and
+# nothing was written. The m = 1 line has the 4999 differences of the 5000 records (its numbers
+# are those of the file cut at byte 80000 and read without error, compared when this was
+# written; the next case compares the two runs on a text log).
+sigmatau_cli_test(NAME cli_long_logs_truncated_partial EXIT 2
+  STDERR "truncated record at byte offset 80000.*--partial: results written for the 5000 samples read before it"
+  STDOUT "c0,oadev,,1.000000e-02,1,4999,0,3.912465e\\+03,9.864289e-01,9.975241e-01,1.009002e\\+00"
   ARGS adev ${truncated} --binary f64 --channels 2 --rate 100 --mode stream --partial
-       --format csv -o ${out_dir}/truncated_partial.csv)
+       --format csv)
+# A text log whose last row is bad: with --partial, exit 2 and the same results as the log
+# without that row (the rows of the block before the bad one are kept, time stamps included).
+file(READ ${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv white_rows)
+file(WRITE ${out_dir}/white_then_bad_row.csv "${white_rows}200.0,0.5,abc\n")
+add_test(NAME cli_long_logs_partial_keeps_rows
+         COMMAND ${CMAKE_COMMAND} "-DCMD=$<TARGET_FILE:sigmatau_cli>" "-DEXIT_A=2"
+                 "-DARGS_A=adev@@${out_dir}/white_then_bad_row.csv@@--time-column@@t@@--mode@@stream@@--partial@@--format@@csv"
+                 "-DARGS_B=adev@@${PROJECT_SOURCE_DIR}/tests/data/cli/white_2ch_10Hz.csv@@--time-column@@t@@--mode@@stream@@--format@@csv"
+                 -P ${PROJECT_SOURCE_DIR}/tests/support/expect_same_output.cmake)
 sigmatau_cli_test(NAME cli_long_logs_truncated_exact EXIT 2 STDERR "truncated record"
   ARGS adev ${truncated} --binary f64 --channels 2 --rate 100 --mode exact)
 

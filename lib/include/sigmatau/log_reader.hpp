@@ -228,7 +228,9 @@ class LogReader {
   const std::vector<std::string>& channel_names() const;
   bool has_time() const;
   /// Reads up to max_rows rows into `block` (replacing its contents). Returns false, with an
-  /// empty block, at the end of the input.
+  /// empty block, at the end of the input. When it throws (bad input), `block` holds the whole
+  /// rows read in this call before the row in error, so that a caller may keep them (`adev
+  /// --partial`); the reader must not be read again after a throw.
   bool read_block(SampleBlock& block, std::int64_t max_rows = 65536);
   /// Timing statistics of what has been read so far (final once read_block returned false).
   const TimingReport& timing() const;
