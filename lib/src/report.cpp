@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "report_common.hpp"
 #include "sigmatau/compliance.hpp"
@@ -236,29 +239,7 @@ std::string floor_text(const json& b, const std::string& unit) {
   return "";
 }
 
-/// Rows of the per-channel parameter table: N, B, K (Q, R when fitted) in data-sheet units.
-std::vector<std::pair<std::string, std::string>> parameter_cells(const json& results,
-                                                                 const json& channel) {
-  const DisplayUnits u = display_units(channel.value("sensor", ""));
-  std::vector<std::pair<std::string, std::string>> cells;
-  const json* fit = find_fit(results, channel.value("name", ""));
-  const std::pair<const char*, std::string> terms[] = {
-      {"N", u.white}, {"B", u.bias}, {"K", u.walk}, {"Q", u.quantization}, {"R", u.ramp}};
-  const bool spec = results.contains("compliance") && !results["compliance"].is_null();
-  for (const auto& [key, unit] : terms) {
-    std::string text;
-    if (fit && fit->contains("parameters") && (*fit)["parameters"].contains(key)) {
-      text = parameter_text((*fit)["parameters"][key], unit);
-    }
-    // With a data sheet, B also as the floor the sheet prints, so the number beside the verdict
-    // is the one compared (a coefficient of 12.3 deg/h read as 54 % over a sheet's 8 deg/h).
-    if (spec && std::string(key) == "B" && !text.empty()) text += floor_text((*fit)["parameters"]["B"], unit);
-    cells.emplace_back(key, text);
-  }
-  return cells;
-}
-
-/// Whether any channel's fit keeps `term` ("Q", "R"): the summary tables show its column then.
+/// Whether any channel's fit keeps `term` ("Q", "R"): the parameter table shows its column then.
 bool any_fit_keeps(const json& results, const char* term) {
   if (!results.contains("fit") || !results["fit"].contains("channels")) return false;
   for (const auto& fit : results["fit"]["channels"]) {
@@ -268,6 +249,80 @@ bool any_fit_keeps(const json& results, const char* term) {
     }
   }
   return false;
+}
+
+/// A table as plain text cells, rendered alike to summary.md and report.html.
+struct TextTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+/// The per-channel parameter table: the channel, its fitted N, B, K (Q and R when some channel
+/// keeps them) in data-sheet units, and the noise density read from its PSD.
+TextTable parameter_table(const json& results) {
+  const bool spec = results.contains("compliance") && !results["compliance"].is_null();
+  std::vector<const char*> terms = {"N", "B", "K"};
+  for (const char* optional : {"Q", "R"}) {
+    if (any_fit_keeps(results, optional)) terms.push_back(optional);
+  }
+  TextTable table;
+  table.header = {"channel"};
+  table.header.insert(table.header.end(), terms.begin(), terms.end());
+  table.header.push_back("noise density (PSD)");
+  for (const auto& channel : results["channels"]) {
+    const DisplayUnits u = display_units(channel.value("sensor", ""));
+    const std::map<std::string, std::string> units = {
+        {"N", u.white}, {"B", u.bias}, {"K", u.walk}, {"Q", u.quantization}, {"R", u.ramp}};
+    const json* fit = find_fit(results, channel.value("name", ""));
+    std::vector<std::string> row = {channel.value("name", "")};
+    for (const char* key : terms) {
+      std::string text;
+      if (fit && fit->contains("parameters") && (*fit)["parameters"].contains(key)) {
+        text = parameter_text((*fit)["parameters"][key], units.at(key));
+        // With a data sheet, B also as the floor the sheet prints, so the number beside the
+        // verdict is the one compared (a coefficient of 12.3 deg/h read as 54 % over a sheet's
+        // 8 deg/h).
+        if (spec && std::string(key) == "B" && !text.empty()) text += floor_text((*fit)["parameters"]["B"], u.bias);
+      }
+      row.push_back(text);
+    }
+    std::string density;
+    if (channel.contains("psd") && channel["psd"].contains("noise_density")) {
+      density = parameter_text(channel["psd"]["noise_density"], u.density);
+    }
+    row.push_back(density);
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
+std::string markdown_table(const TextTable& table) {
+  std::ostringstream md;
+  md << "|";
+  for (const auto& cell : table.header) md << " " << cell << " |";
+  md << "\n|";
+  for (std::size_t i = 0; i < table.header.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : table.rows) {
+    md << "|";
+    for (const auto& cell : row) md << " " << cell << " |";
+    md << "\n";
+  }
+  return md.str();
+}
+
+std::string html_table(const TextTable& table) {
+  std::ostringstream h;
+  h << "<table><tr>";
+  for (const auto& cell : table.header) h << "<th>" << html_escape(cell) << "</th>";
+  h << "</tr>\n";
+  for (const auto& row : table.rows) {
+    h << "<tr>";
+    for (const auto& cell : row) h << "<td>" << html_escape(cell) << "</td>";
+    h << "</tr>\n";
+  }
+  h << "</table>";
+  return h.str();
 }
 
 std::string summary_markdown(const json& results, const std::map<std::string, std::string>& filter_files,
@@ -289,21 +344,7 @@ std::string summary_markdown(const json& results, const std::map<std::string, st
        << (typical_limit_used(results["compliance"]) ? std::string(" (") + kTypicalLimitNote + ")" : "")
        << "\n";
   }
-  const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
-  md << "\n| channel | N | B | K |" << (show_q ? " Q |" : "") << (show_r ? " R |" : "")
-     << " noise density (PSD) |\n|---|---|---|---|" << (show_q ? "---|" : "") << (show_r ? "---|" : "")
-     << "---|\n";
-  for (const auto& channel : results["channels"]) {
-    const auto cells = parameter_cells(results, channel);
-    std::string density;
-    if (channel.contains("psd") && channel["psd"].contains("noise_density")) {
-      const DisplayUnits u = display_units(channel.value("sensor", ""));
-      density = parameter_text(channel["psd"]["noise_density"], u.density);
-    }
-    md << "| " << channel.value("name", "") << " | " << cells[0].second << " | " << cells[1].second
-       << " | " << cells[2].second << " | " << (show_q ? cells[3].second + " | " : "")
-       << (show_r ? cells[4].second + " | " : "") << density << " |\n";
-  }
+  md << "\n" << markdown_table(parameter_table(results));
   md << "\n" << kBiasFloorNote << "\n";
   if (results.contains("compliance") && !results["compliance"].is_null()) {
     md << "\n| parameter | verdict | measured [interval] | limit | measured / limit [interval] |\n"
@@ -375,22 +416,7 @@ std::string report_html(const json& results, const PlotSet& plots,
       << "</p>\n";
   }
   const bool show_q = any_fit_keeps(results, "Q"), show_r = any_fit_keeps(results, "R");
-  h << "<table><tr><th>channel</th><th>N</th><th>B</th><th>K</th>" << (show_q ? "<th>Q</th>" : "")
-    << (show_r ? "<th>R</th>" : "") << "<th>noise density (PSD)</th></tr>\n";
-  for (const auto& channel : results["channels"]) {
-    const auto cells = parameter_cells(results, channel);
-    std::string density;
-    if (channel.contains("psd") && channel["psd"].contains("noise_density")) {
-      const DisplayUnits u = display_units(channel.value("sensor", ""));
-      density = parameter_text(channel["psd"]["noise_density"], u.density);
-    }
-    h << "<tr><td>" << html_escape(channel.value("name", "")) << "</td><td>" << html_escape(cells[0].second)
-      << "</td><td>" << html_escape(cells[1].second) << "</td><td>" << html_escape(cells[2].second)
-      << (show_q ? "</td><td>" + html_escape(cells[3].second) : "")
-      << (show_r ? "</td><td>" + html_escape(cells[4].second) : "")
-      << "</td><td>" << html_escape(density) << "</td></tr>\n";
-  }
-  h << "</table><p class=\"muted\">Intervals at " << fmt(100 * results.value("confidence", 0.683), 3)
+  h << html_table(parameter_table(results)) << "<p class=\"muted\">Intervals at " << fmt(100 * results.value("confidence", 0.683), 3)
     << " % confidence. N: angle/velocity random walk (white noise density, AVAR = N&sup2;/&tau;); "
        "B: bias instability coefficient (data sheets print its ADEV floor 0.664 B as the bias "
        "stability, and the compliance rows compare that floor); K: rate random walk"
