@@ -23,6 +23,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/fit.hpp"
 #include "sigmatau/output_file.hpp"
+#include "sigmatau/saved_adev.hpp"
 #include "verbs.hpp"
 
 namespace sigmatau::cli {
@@ -294,19 +295,6 @@ void check_unit_names_a_sensor(const LogArguments& args) {
               ") is neither an angular rate nor an acceleration");
 }
 
-/// The sample rate [Hz] a saved adev result records ("input": {"rate_hz"}, which read_adev_json
-/// requires), taken as written rather than as 1 / tau0 so that fit's JSON repeats it exactly;
-/// nullopt when it is not a number > 0.
-std::optional<double> saved_rate_hz(const std::string& text) {
-  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (!doc.is_object() || !doc.contains("input") || !doc["input"].is_object()) return std::nullopt;
-  const nlohmann::json& input = doc["input"];
-  if (!input.contains("rate_hz") || !input["rate_hz"].is_number()) return std::nullopt;
-  const double rate_hz = input["rate_hz"].get<double>();
-  if (!(rate_hz > 0)) return std::nullopt;
-  return rate_hz;
-}
-
 void warn_constant(const std::string& input, const std::string& channel) {
   std::cerr << "sigmatau: warning: " << input << ": "
             << constant_channel_text(channel, "every OADEV value is 0") << "; left out of the fit\n";
@@ -408,9 +396,8 @@ void run_fit(const FitArguments& args) {
   std::vector<Channel> channels;
   std::optional<double> log_rate_hz;
   if (looks_like_json(sniff(args.log.input))) {
-    const std::string saved_text = read_text_file(args.log.input);
-    const auto saved_curves = read_adev_json(saved_text, args.log.input);
-    log_rate_hz = saved_rate_hz(saved_text);
+    const SavedAdev saved_adev = read_adev_json(read_text_file(args.log.input), args.log.input);
+    log_rate_hz = saved_adev.rate_hz;
     std::string ignored = args.log_options_given;
     for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--gyro-unit", args.log.gyro_unit},
                                         {"--accel-unit", args.log.accel_unit}}) {
@@ -420,7 +407,7 @@ void run_fit(const FitArguments& args) {
       throw Error(args.log.input + " is a saved adev result (its rate, units and channels are in "
                   "it): " + ignored + " would be ignored; leave them out, or fit the log itself");
     }
-    for (const auto& saved : saved_curves) {
+    for (const auto& saved : saved_adev.curves) {
       if (all_deviations_zero(saved.curve)) {
         warn_constant(args.log.input, saved.channel);
         continue;

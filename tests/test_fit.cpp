@@ -376,29 +376,6 @@ TEST_CASE("bad inputs are clear errors") {
     o.confidence_level = std::nan("");
     CHECK_THROWS_WITH_AS(fit_noise(exact_curve(nbk()), source, o), doctest::Contains("--ci"), Error);
   }
-  SUBCASE("a JSON of the wrong shape") {
-    CHECK_THROWS_WITH_AS(read_adev_json(R"({"channels": []})", "x.json"),
-                         doctest::Contains("x.json: not a saved"), Error);
-    CHECK_THROWS_WITH_AS(read_adev_json("{\"input\":", "x.json"), doctest::Contains("not valid JSON"), Error);
-    CHECK_THROWS_WITH_AS(
-        read_adev_json(R"({"input":{"rate_hz":100,"samples":1000},"results":[{"statistic":"mdev"}]})", "x.json"),
-        doctest::Contains("no oadev"), Error);
-    CHECK_THROWS_WITH_AS(
-        read_adev_json(R"({"input":{"rate_hz":100,"samples":1000},"results":[{"statistic":"oadev","channel":"gx","points":[{"tau":0.01}]}]})",
-                       "x.json"),
-        doctest::Contains("results[0].points[0].m"), Error);
-  }
-}
-
-TEST_CASE("a saved adev result is read back in SI") {
-  const auto saved = read_adev_json(
-      R"({"input":{"rate_hz":100,"samples":1000,"kind":"rate"},"results":[{"channel":"gx","statistic":"oadev","unit":"deg/s","points":[{"tau":0.01,"m":1,"n":999,"dev":1.0,"edf":600,"alpha":0}]}]})",
-      "x.json");
-  REQUIRE(saved.size() == 1);
-  CHECK(saved[0].sensor == Sensor::gyro);
-  CHECK(saved[0].source.n_phase_points == 1001);
-  // deg/s -> rad/s is pi/180 exactly as units.hpp defines it.
-  SIGMATAU_CHECK_REL(saved[0].curve.points[0].value.dev, 3.14159265358979323846 / 180, 1e-15);
 }
 
 TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min mends it") {

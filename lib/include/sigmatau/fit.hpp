@@ -214,19 +214,4 @@ std::vector<TriadSummary> summarise_triads(const std::vector<std::string>& names
                                            const std::vector<Sensor>& sensors,
                                            const std::vector<const ChannelFit*>& fits);
 
-/// One channel of a saved `sigmatau adev --format json` result, converted to SI.
-struct SavedCurve {
-  std::string channel;
-  AllanCurve curve;        ///< oadev, deviations in SI
-  CurveSource source;
-  std::optional<Sensor> sensor;  ///< from the unit's dimension, when the result has a unit
-};
-/// Whether `text` (the start of a file is enough) looks like JSON rather than a log.
-bool looks_like_json(std::string_view text);
-/// Reads a saved adev JSON result: every "oadev" result (others are skipped). Deviations are
-/// converted to SI with the result's unit (empty unit: taken as SI).
-/// Throws Error naming `file` and the missing or malformed field, or when it holds no oadev
-/// result ("rerun adev with --stat oadev").
-std::vector<SavedCurve> read_adev_json(std::string_view text, const std::string& file);
-
 }  // namespace sigmatau
