@@ -62,7 +62,7 @@ double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
 /// (F = m while m (d+1) <= 100, sampled phase beyond), which for white FM correlates
 /// neighbouring rate samples (lag-1 correlation 1/4). OADEV at m = 1, white FM: Greenhall
 /// ~ 18/23 (N - 2), exact 2 n^2 / (3 n - 1) with n = N - 2, ~ 2/3 (N - 2). Measured at N = 65537:
-/// +10..+25 % (-24 % random-walk FM) at m = 1; OADEV/OHDEV white FM -5..-12 % for m = 2..16 and
+/// +10..+25 % (-24 % random-walk FM) at m = 1; OADEV/OHDEV white FM -3..-12 % for m = 2..16 and
 /// within 0.1 % once Greenhall samples the phase (m >= 34 for d = 2); ADEV/HDEV within 2 % from
 /// m = 8; OADEV/OHDEV flicker PM 11..16 % below exact at all m (a noise whose variance depends
 /// on the sampling bandwidth); white PM identical (tests/test_edf_exact.cpp).
