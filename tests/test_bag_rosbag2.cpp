@@ -155,6 +155,37 @@ TEST_CASE("db3 corrupt messages give a ParseError naming the row id") {
   CHECK(msg.find(expect) != std::string::npos);
 }
 
+TEST_CASE("db3 files cut short say so") {
+  TempDir dir;
+  const fs::path whole = dir.file("whole.db3");
+  test::write_db3(whole, two_topics(2000, 38));
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const fs::path p = dir.file("cut.db3");
+  std::string expect;
+  SUBCASE("cut after two thirds") {
+    test::writer_detail::write_file(p, bytes.substr(0, bytes.size() * 2 / 3));
+    expect = "bytes: it was cut short, by a recording stopped before rosbag2 closed it or by an "
+             "incomplete copy, and SQLite cannot read it)";
+  }
+  SUBCASE("cut inside the SQLite header") {
+    test::writer_detail::write_file(p, bytes.substr(0, 50));
+    expect = "the file is 50 bytes, shorter than the 100-byte SQLite header: it was cut short";
+  }
+  std::string msg;
+  try {
+    auto bag = detail::open_rosbag2_sqlite(p.string());
+    msg = drain(*bag, "/imu/data");
+  } catch (const Error& e) {
+    msg = e.what();
+  }
+  INFO(msg);
+  CHECK(msg.find(expect) != std::string::npos);
+  // The whole file reads without the note (every other case here reads whole files too).
+  auto bag = detail::open_rosbag2_sqlite(whole.string());
+  CHECK(read_all(*bag, "/imu/data").size() == 2000);
+}
+
 TEST_CASE("db3 files that are not rosbag2 SQLite are refused clearly") {
   TempDir dir;
   SUBCASE("not SQLite") {

@@ -17,6 +17,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -48,6 +49,35 @@ std::string file_uri(const std::string& path) {
   return uri + "?mode=ro";
 }
 
+/// When a database file is shorter than its header says (a recording stopped before rosbag2
+/// closed it, or an incomplete copy), the note SQLite's "malformed" errors get; else "". The
+/// header (sqlite.org/fileformat.html, 1.3): page size at offset 16 (2 bytes big-endian, 1 for
+/// 65536), file change counter at 24, size in pages at 28, valid only when the "version-valid-
+/// for" number at 92 equals the change counter.
+std::string cut_short_note(BagFile& file, std::int64_t size) {
+  constexpr std::size_t kHeaderBytes = 100;
+  if (size < static_cast<std::int64_t>(kHeaderBytes)) {
+    return " (the file is " + std::to_string(size) +
+           " bytes, shorter than the 100-byte SQLite header: it was cut short)";
+  }
+  const auto* h = reinterpret_cast<const unsigned char*>(file.view(0, kHeaderBytes, "SQLite header"));
+  const auto be32 = [h](std::size_t at) {
+    return (std::uint32_t{h[at]} << 24) | (std::uint32_t{h[at + 1]} << 16) |
+           (std::uint32_t{h[at + 2]} << 8) | std::uint32_t{h[at + 3]};
+  };
+  const std::uint32_t page_field = (std::uint32_t{h[16]} << 8) | h[17];
+  const std::int64_t page_bytes = page_field == 1 ? 65536 : page_field;
+  const std::int64_t pages = be32(28);
+  if (be32(92) != be32(24) || pages == 0 || page_bytes < 512) return "";  // size field not kept
+  const std::int64_t expected = pages * page_bytes;
+  if (size >= expected) return "";
+  return " (the file is " + std::to_string(size) + " bytes but its header counts " +
+         std::to_string(pages) + " pages of " + std::to_string(page_bytes) + " bytes, " +
+         std::to_string(expected) +
+         " bytes: it was cut short, by a recording stopped before rosbag2 closed it or by an "
+         "incomplete copy, and SQLite cannot read it)";
+}
+
 struct Topic {
   std::int64_t id = 0;
   std::string name, type, format;
@@ -73,6 +103,7 @@ class Rosbag2Sqlite final : public BagBackend {
                          "not an SQLite database: byte offset 0 does not hold \"SQLite format "
                          "3\" (a rosbag2 .db3 file is one)");
       }
+      cut_note_ = cut_short_note(probe, size_);
     }
     const std::string uri = file_uri(path);
     sqlite3* db = nullptr;
@@ -81,7 +112,7 @@ class Rosbag2Sqlite final : public BagBackend {
     db_.reset(db);
     if (rc != SQLITE_OK) {
       throw Error(path + ": cannot open as SQLite database: " +
-                  (db ? sqlite3_errmsg(db) : sqlite3_errstr(rc)));
+                  (db ? sqlite3_errmsg(db) : sqlite3_errstr(rc)) + cut_note_);
     }
     read_topics();
     Statement max(*this, "SELECT MAX(id) FROM messages");
@@ -199,7 +230,7 @@ class Rosbag2Sqlite final : public BagBackend {
     }
     std::string where;
     if (last_id_ >= 0) where = " after messages row id " + std::to_string(last_id_);
-    throw ParseError(file_, 0, 0, "SQLite error " + doing + where + ": " + why);
+    throw ParseError(file_, 0, 0, "SQLite error " + doing + where + ": " + why + cut_note_);
   }
 
   int step(sqlite3_stmt* stmt, const char* doing) {
@@ -228,6 +259,7 @@ class Rosbag2Sqlite final : public BagBackend {
 
   std::string file_;
   std::int64_t size_ = 0;
+  std::string cut_note_;  ///< what SQLite's errors gain when the file is shorter than its header says
   std::unique_ptr<sqlite3, int (*)(sqlite3*)> db_{nullptr, sqlite3_close};
   std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt_{nullptr,
                                                               sqlite3_finalize};  // after db_
