@@ -7,16 +7,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <utility>
 #include <sstream>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/units.hpp"
 
 namespace sigmatau {
 namespace {
 
-/// Standard gravity [m/s^2] (CGPM 1901; the value every "g" unit uses).
-constexpr double kStandardGravity = 9.80665;
 /// Largest plausible mean rate of a static gyro [rad/s]: see data_checks.hpp.
 constexpr double kMaxStaticGyroRate = 0.5;
 /// Plausible band of a static accelerometer's mean norm [g]: see data_checks.hpp.
@@ -25,15 +24,10 @@ constexpr double kAccelNormHigh = 1.25;
 /// Two factors within this relative distance are the same unit (deg/s typed two ways).
 constexpr double kSameFactor = 1e-9;
 
-struct Unit {
-  const char* name;
-  double to_si;
-};
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr Unit kRateUnits[] = {
-    {"rad/s", 1.0}, {"deg/s", kDeg}, {"mrad/s", 1e-3}, {"deg/h", kDeg / 3600.0}};
-constexpr Unit kAccelUnits[] = {
-    {"m/s^2", 1.0}, {"g", kStandardGravity}, {"mg", kStandardGravity * 1e-3}, {"ft/s^2", 0.3048}};
+/// The units a mislabelled channel is most likely in, by name: their factors come from
+/// units.hpp (parse_unit), as every other unit's.
+constexpr const char* kRateUnits[] = {"rad/s", "deg/s", "mrad/s", "deg/h"};
+constexpr const char* kAccelUnits[] = {"m/s^2", "g", "mg", "ft/s^2"};
 
 std::string format_value(double v) {
   std::ostringstream s;
@@ -149,16 +143,18 @@ std::string join_names(const std::vector<std::string>& names) {
 /// The first candidate unit (other than the declared one), nearest the declared factor in
 /// log scale, for which raw * f is plausible.
 template <std::size_t N, class Plausible>
-std::string likely_unit(const Unit (&units)[N], double to_si, double raw, Plausible plausible) {
-  std::vector<const Unit*> order;
-  for (const Unit& u : units) {
-    if (std::abs(u.to_si / to_si - 1.0) > kSameFactor) order.push_back(&u);
+std::string likely_unit(const char* const (&names)[N], double to_si, double raw,
+                        Plausible plausible) {
+  std::vector<std::pair<const char*, double>> order;  // name, factor to SI
+  for (const char* name : names) {
+    const double f = parse_unit(name).factor;
+    if (std::abs(f / to_si - 1.0) > kSameFactor) order.emplace_back(name, f);
   }
-  std::stable_sort(order.begin(), order.end(), [&](const Unit* a, const Unit* b) {
-    return std::abs(std::log(a->to_si / to_si)) < std::abs(std::log(b->to_si / to_si));
+  std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+    return std::abs(std::log(a.second / to_si)) < std::abs(std::log(b.second / to_si));
   });
-  for (const Unit* u : order) {
-    if (plausible(raw * u->to_si)) return u->name;
+  for (const auto& [name, f] : order) {
+    if (plausible(raw * f)) return name;
   }
   return "";
 }
