@@ -32,6 +32,18 @@ constexpr int kBatches = 10;
 /// 0.664 B of 0.05 mg against 100 ug/sqrt(Hz) white noise raises the ratio by ~3 %; a STIM300 by
 /// < 1 %), while a slow turn of the gravity direction raises it by orders of magnitude.
 constexpr double kMaxBatchRatio = 10;
+/// Long dwells have long batches (a tenth of the dwell), over which a MEMS bias drifts: with a
+/// BMI088-class gyro and 600 s dwells every interval's mean ratio is 5-18, and the fixed limit
+/// refused them all as slow motion. The limit is therefore kMaxBatchRatio times the median of
+/// the candidates' mean ratios (a calibration log is mostly static dwells, so the median is the
+/// sensor's own drift at this dwell length), that factor held to 1..kMaxDriftFactor.
+constexpr double kMaxDriftFactor = 100;
+/// What tells motion from drift once the limit is raised: a turn moves the batch means by as much
+/// as it spreads the samples, so their variance ratio nears its ceiling, the samples per batch
+/// (a log tumbling at 20 deg/s: 0.9-1.0 of it), while a drifting bias stays a small part of the
+/// samples' spread (600 s dwells: 0.002). Past kMaxBatchRatio, a run whose worst ratio is over
+/// this fraction of that ceiling is moving whatever the limit.
+constexpr double kMaxTrendFraction = 0.5;
 
 /// Values of sample r of `rows` converted for the detector: accelerometer and gyroscope as
 /// rates (increments times the rate, as the whole-log code did), temperature as stored.
@@ -280,32 +292,51 @@ StaticDetection detect_static(const CalibrationSamples& in, const CalibrationOpt
       });
   if (in_run) close();
 
-  // Pass 3, over the candidates only: covariances and the batch-means check.
-  double ratio_sum = 0;
-  int ratio_count = 0;
-  for (StaticInterval& s : candidates) {
+  // Pass 3, over the candidates only: covariances and the batch-means ratios, then the check.
+  struct Ratios {
+    double sum = 0, worst = 0;
+    int count = 0;
+  };
+  std::vector<Ratios> ratios(candidates.size());
+  std::vector<double> mean_ratios;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    StaticInterval& s = candidates[k];
+    Ratios& r = ratios[k];
     const Spread sp = spread_of(in, s);
     const std::int64_t n = s.last - s.first + 1;
     const double count = static_cast<double>(n);
-    double my_sum = 0, worst = 0;
-    int my_count = 0;
     s.accel_cov = sp.accel / count;
     for (int a = 0; a < 3; ++a)
-      batch_ratio(sp.batch[static_cast<std::size_t>(a)], n, sp.accel(a, a), my_sum, my_count,
-                  worst);
+      batch_ratio(sp.batch[static_cast<std::size_t>(a)], n, sp.accel(a, a), r.sum, r.count,
+                  r.worst);
     if (gyro) {
       s.gyro_sample_cov = sp.gyro;
       s.gyro_cov = s.gyro_sample_cov / count;
       for (int a = 0; a < 3; ++a)
-        batch_ratio(sp.batch[static_cast<std::size_t>(3 + a)], n, sp.gyro(a, a), my_sum, my_count,
-                    worst);
+        batch_ratio(sp.batch[static_cast<std::size_t>(3 + a)], n, sp.gyro(a, a), r.sum, r.count,
+                    r.worst);
     }
-    if (worst > kMaxBatchRatio) {
+    if (r.count > 0) mean_ratios.push_back(r.sum / r.count);
+  }
+  double drift = 1;
+  if (!mean_ratios.empty()) {
+    const auto mid = mean_ratios.begin() + static_cast<std::ptrdiff_t>(mean_ratios.size() / 2);
+    std::nth_element(mean_ratios.begin(), mid, mean_ratios.end());
+    drift = std::clamp(*mid, 1.0, kMaxDriftFactor);
+  }
+  d.batch_ratio_limit = kMaxBatchRatio * drift;
+  double ratio_sum = 0;
+  int ratio_count = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const double per = static_cast<double>((candidates[k].last - candidates[k].first + 1) / kBatches);
+    const double worst = ratios[k].worst;
+    const bool trend = worst > kMaxBatchRatio && (worst - 1) > kMaxTrendFraction * (per - 1);
+    if (worst > d.batch_ratio_limit || trend) {
       ++d.rejected_moving;
     } else {
-      ratio_sum += my_sum;
-      ratio_count += my_count;
-      d.intervals.push_back(s);
+      ratio_sum += ratios[k].sum;
+      ratio_count += ratios[k].count;
+      d.intervals.push_back(candidates[k]);
     }
   }
   // Pooled batch-means check: for white noise each ratio has mean 1 and variance 2/(B-1); the

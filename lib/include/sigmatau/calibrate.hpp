@@ -103,6 +103,10 @@ struct StaticDetection {
   double noise_inflation = 1;  ///< pooled batch-means factor applied to every mean's covariance
   /// Quiet runs rejected because their batch means drift (slow motion, see the detector).
   int rejected_moving = 0;
+  /// The limit they were held to: 10 times the median over the quiet runs of their mean ratio of
+  /// batch-means variance to the white-noise prediction, that median taken as 1..100 (the drift
+  /// of the sensor's bias over the batches of long dwells is not motion).
+  double batch_ratio_limit = 10;
 };
 
 /// Finds the static intervals. Per sample, the statistic is the sum over the axes of the
@@ -111,7 +115,8 @@ struct StaticDetection {
 /// selected in bounded memory, by histogram passes over the values' bit patterns), and a
 /// sample is static when the statistic is at most kStaticThresholdFactor times the floor for
 /// both sensors. Runs of at least `min_interval_s` become intervals, unless on some axis their 10 batch
-/// means vary more than 10 times what the within-run noise predicts (slow motion). Throws Error on bad input
+/// means vary more than batch_ratio_limit times what the within-run noise predicts (slow motion;
+/// 10 times, or more where every run's bias drifts over long dwells). Throws Error on bad input
 /// (rate not > 0, missing or unequal channels, non-finite values, log shorter than a window).
 StaticDetection detect_static_intervals(const CalibrationInput& input,
                                         const CalibrationOptions& options);
