@@ -1,5 +1,6 @@
 // `sigmatau calibrate`: scale factors, misalignment, biases and their temperature dependence from
 // a multi-position log (calibrate.hpp).
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -243,6 +244,18 @@ void run_calibrate(const CalibrateArguments& a) {
     check_gyro_unit(result, used.gyro_unit, path);
   }
   for (const auto& n : calibration_notes(result)) std::cerr << "sigmatau: note: " << n << "\n";
+  if (!a.gravity && !a.latitude_deg) {
+    // The accelerometer's gains are relative to the gravity assumed: local gravity is 0.26 %
+    // below standard gravity at the equator and 0.26 % above it at the poles (normal_gravity).
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "gravity taken as standard gravity, %.5f m/s^2 (no --latitude or --gravity): "
+                  "local gravity differs from it by %+.2f %% at the equator and %+.2f %% at the "
+                  "poles, and the accelerometer's gain errors absorb the difference",
+                  o.gravity, 100 * (normal_gravity(0) / o.gravity - 1),
+                  100 * (normal_gravity(std::numbers::pi / 2) / o.gravity - 1));
+    std::cerr << "sigmatau: note: " << text << "\n";
+  }
   const std::string text = a.format == "json" ? calibration_json(result) : calibration_table(result);
   if (a.output.empty()) {
     std::cout << text;

@@ -18,6 +18,12 @@ sigmatau_cli_test(NAME cli_calibrate_table EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
   STDOUT "gain error x.*cross-axis yx.*bias tempco x"
   ARGS calibrate cal.csv --time-column t --latitude 45)
 set_tests_properties(cli_calibrate_table PROPERTIES DEPENDS cli_calibrate_simulate)
+# Without --latitude or --gravity, standard gravity is assumed and a note says what that does to
+# the gains (this log was simulated at 45 deg, where normal gravity is 0.005 % below standard).
+sigmatau_cli_test(NAME cli_calibrate_standard_gravity_note EXIT 0 WORKING_DIRECTORY ${CAL_DIR}
+  STDERR "note: gravity taken as standard gravity, 9\\.80665 m/s\\^2 \\(no --latitude or --gravity\\): local gravity differs from it by -0\\.27 % at the equator and \\+0\\.26 % at the poles"
+  ARGS calibrate cal.csv --time-column t --format json)
+set_tests_properties(cli_calibrate_standard_gravity_note PROPERTIES DEPENDS cli_calibrate_simulate)
 # The calibration result feeds `check` (the same keys compliance.cpp reads).
 sigmatau_cli_test(NAME cli_calibrate_wrong_unit EXIT 2 WORKING_DIRECTORY ${CAL_DIR}
   STDERR "--accel-unit"
