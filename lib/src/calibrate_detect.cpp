@@ -33,8 +33,8 @@ constexpr int kBatches = 10;
 /// < 1 %), while a slow turn of the gravity direction raises it by orders of magnitude.
 constexpr double kMaxBatchRatio = 10;
 /// Long dwells have long batches (a tenth of the dwell), over which a MEMS bias drifts: with a
-/// BMI088-class gyro and 600 s dwells every interval's mean ratio is 5-18, and the fixed limit
-/// refused them all as slow motion. The limit is therefore kMaxBatchRatio times the median of
+/// BMI088-class pair (accelerometer flicker B = 0.1 mg) and 600 s dwells every interval's mean
+/// ratio is 5-18, and the fixed limit refused them all as slow motion. The limit is therefore kMaxBatchRatio times the median of
 /// the candidates' mean ratios (a calibration log is mostly static dwells, so the median is the
 /// sensor's own drift at this dwell length), that factor held to 1..kMaxDriftFactor.
 constexpr double kMaxDriftFactor = 100;
