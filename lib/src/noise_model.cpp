@@ -9,6 +9,7 @@
 //   H_k    cumulative sum of h: sum_{j<=k} h_j = (2k + 1) h_k (checked in tools/noise_model_theory.py)
 #include "sigmatau/noise_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -124,11 +125,16 @@ double flicker_avar_per_unit(std::int64_t m, std::int64_t taps) {
   if (untruncated && m >= kFlickerAsymptoticM) return 2 * std::numbers::ln2 / kPi;
   // k runs over the support of c = h * a_m: [0, L - 1 + 2m] (truncated) or [0, K] + tail.
   const std::int64_t k_end = untruncated ? 2 * m + kFlickerTailFactor * m : taps - 1 + 2 * m;
-  // H_k for k = 0..k_end, with H_k = H_{L-1} for k >= L (truncated filter). Keep a ring of the
-  // last 2m + 1 values so memory stays O(m).
-  std::vector<long double> ring(static_cast<std::size_t>(2 * m + 1), 0.0L);
+  // H_k for k = 0..k_end, with H_k = H_{L-1} for k >= L (truncated filter). The loop reads
+  // H_{k-m} and H_{k-2m}: kept in a ring of the last 2m + 1 values, or, when the filter is
+  // shorter than that ring, as its L values (H saturates beyond them), so that memory stays
+  // O(min(m, L)). A ring at the longest taus of a simulator sidecar (m ~ N/6) took 16 (2m + 1)
+  // bytes: 0.5 GiB at 1e8 samples, 4 GiB at 1e9.
+  const bool by_filter = !untruncated && taps < 2 * m + 1;
+  std::vector<long double> stored(static_cast<std::size_t>(by_filter ? taps : 2 * m + 1), 0.0L);
   const auto slot = [&](std::int64_t k) -> long double& {
-    return ring[static_cast<std::size_t>(k % (2 * m + 1))];
+    if (by_filter) return stored[static_cast<std::size_t>(std::min(k, taps - 1))];
+    return stored[static_cast<std::size_t>(k % (2 * m + 1))];
   };
   long double h = 1.0L;  // h_k
   long double sum = 0.0L;
