@@ -7,6 +7,7 @@
 //   symbol  a run of letters and unit signs (°, µ, μ, %, ...) looked up in units_table.cpp
 #include "sigmatau/units.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -26,6 +27,17 @@ constexpr double kMaxExponent = 16;
 /// An exponent times a dimension exponent must be a whole number of halves; this tolerance only
 /// absorbs the rounding of decimal exponents such as ^0.3333333333 (which is still rejected).
 constexpr double kHalvesTolerance = 1e-9;
+/// Deepest nesting of parentheses and roots accepted ("((deg)/s)" is 2, "sqrt(sqrt(h))" 4). The
+/// deepest data-sheet unit nests 2 or 3 deep; the parser recurses once per level, so without a
+/// bound a text of 20000 '(' overflowed the stack (SIGSEGV).
+constexpr int kMaxNesting = 32;
+/// Largest |dimension exponent| in halves (Dimension): 64 is an exponent of 32, far beyond any
+/// physical unit (the noise terms reach 2.5). Powers of powers ("((s^16)^16)^16") and long
+/// products stop here, well before the int exponents overflow.
+constexpr int kMaxDimensionHalves = 64;
+/// A unit text longer than this [characters] is quoted in messages as an excerpt around the
+/// column at fault, so a hostile 1 MB text gives a one-line message.
+constexpr std::size_t kMaxQuotedChars = 80;
 
 // ---- UTF-8 ----------------------------------------------------------------------------------
 
@@ -67,6 +79,33 @@ std::size_t column_of(std::string_view text, std::size_t byte_pos) {
   for (std::size_t i = 0; i < byte_pos && i < text.size(); ++i)
     if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;
   return column;
+}
+
+/// Byte position of the code point `chars` characters before (negative) or after `byte_pos`,
+/// clamped to the text.
+std::size_t step_chars(std::string_view text, std::size_t byte_pos, long chars) {
+  const auto lead = [&](std::size_t i) { return (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80; };
+  std::size_t p = std::min(byte_pos, text.size());
+  for (; chars < 0 && p > 0; ++chars) {
+    --p;
+    while (p > 0 && !lead(p)) --p;
+  }
+  for (; chars > 0 && p < text.size(); --chars) {
+    ++p;
+    while (p < text.size() && !lead(p)) ++p;
+  }
+  return p;
+}
+
+/// `text` for a message: whole when it has at most kMaxQuotedChars characters, else the
+/// kMaxQuotedChars around `byte_pos` with "..." where it is cut.
+std::string excerpt(std::string_view text, std::size_t byte_pos) {
+  if (column_of(text, text.size()) - 1 <= kMaxQuotedChars) return std::string(text);
+  const auto half = static_cast<long>(kMaxQuotedChars / 2);
+  const std::size_t begin = step_chars(text, byte_pos, -half);
+  const std::size_t end = step_chars(text, begin, 2 * half);
+  return (begin > 0 ? "..." : "") + std::string(text.substr(begin, end - begin)) +
+         (end < text.size() ? "..." : "");
 }
 
 std::string describe(std::string_view text, std::size_t pos, const CodePoint& c) {
@@ -144,7 +183,7 @@ class Parser {
                          const std::string& hint = "") const {
     const std::size_t column = column_of(text_, byte_pos);
     throw UnitError(problem + " at column " + std::to_string(column) + " of \"" +
-                        std::string(text_) + "\"" + hint,
+                        excerpt(text_, byte_pos) + "\"" + hint,
                     column);
   }
 
@@ -162,6 +201,38 @@ class Parser {
     return at_end() ? "the end of the text" : describe(text_, pos_, peek());
   }
 
+  /// One level of '(' or root, for the extent of a parse_factor call that recurses; throws past
+  /// kMaxNesting (where the level opens).
+  class Nested {
+   public:
+    Nested(Parser& parser, std::size_t where) : parser_(parser) {
+      if (++parser_.depth_ > kMaxNesting) {
+        parser_.fail("more than " + std::to_string(kMaxNesting) +
+                         " nested parentheses or roots (no unit nests this deep)",
+                     where);
+      }
+    }
+    ~Nested() { --parser_.depth_; }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+
+   private:
+    Parser& parser_;
+  };
+
+  /// `u` when every dimension exponent is within kMaxDimensionHalves, else fails at `where`.
+  Unit bounded(const Unit& u, std::size_t where) const {
+    const Dimension& d = u.dimension;
+    for (const int x2 : {d.angle2, d.length2, d.time2, d.temperature2, d.counts2}) {
+      if (std::abs(x2) > kMaxDimensionHalves) {
+        fail("a dimension exponent beyond " + std::to_string(kMaxDimensionHalves / 2) +
+                 " (no physical unit has one)",
+             where);
+      }
+    }
+    return u;
+  }
+
   /// factor { op factor }, stopping before ')' or at the end.
   Unit parse_product() {
     Unit u;
@@ -175,16 +246,16 @@ class Parser {
       if (c == '*' || c == 0xB7 || c == 0x22C5) {
         advance();
         skip_space();
-        u = multiply(u, parse_factor(), +1);
+        u = bounded(multiply(u, parse_factor(), +1), op);
       } else if (c == '/') {
         advance();
         skip_space();
-        u = multiply(u, parse_factor(), -1);
+        u = bounded(multiply(u, parse_factor(), -1), op);
         divided = true;
       } else if (spaced) {
         const Unit next = parse_factor();  // first, so an unknown word is reported as such
         if (divided) fail("ambiguous product after '/' (write a/(b*c) or a/b*c)", op);
-        u = multiply(u, next, +1);
+        u = bounded(multiply(u, next, +1), op);
       } else {
         fail("unexpected " + found_here(), op);
       }
@@ -196,11 +267,13 @@ class Parser {
     if (at_end()) fail("expected a unit, found the end of the text", pos_);
     const char32_t c = peek().value;
     if (c == 0x221A) {  // √
+      const Nested level(*this, start);
       advance();
       skip_space();
       return power(parse_factor(), 0.5, start);
     }
     if (c == '(') {
+      const Nested level(*this, start);
       advance();
       skip_space();
       const Unit inner = parse_product();
@@ -221,6 +294,7 @@ class Parser {
       while (!at_end() && is_symbol_char(peek().value)) advance();
       const std::string_view name = text_.substr(start, pos_ - start);
       if (name == "sqrt" || name == "rt") {
+        const Nested level(*this, start);
         if (name == "rt" && is_minus(peek().value) && !at_end()) advance();  // rt-Hz
         skip_space();
         return power(parse_factor(), 0.5, start);
@@ -333,6 +407,11 @@ class Parser {
         fail("power " + format_number(p) +
                  " gives an exponent that is not a multiple of 1/2 (quarter roots are not units)",
              where);
+      if (!(std::abs(r) <= kMaxDimensionHalves)) {  // before the cast: it would overflow int
+        fail("a dimension exponent beyond " + std::to_string(kMaxDimensionHalves / 2) +
+                 " (no physical unit has one)",
+             where);
+      }
       return static_cast<int>(r);
     };
     Unit out;
@@ -345,6 +424,7 @@ class Parser {
 
   std::string_view text_;
   std::size_t pos_;
+  int depth_ = 0;  ///< levels of '(' and roots open (Nested)
 };
 
 std::string_view trim(std::string_view s) {
@@ -411,7 +491,7 @@ ParsedQuantity parse_quantity_parts(std::string_view text) {
   }
   const double si = q.value * q.unit.factor + q.unit.offset;
   if (!std::isfinite(si))
-    located.fail("value \"" + std::string(text) + "\" overflows in SI", number_start);
+    located.fail("value \"" + excerpt(text, number_start) + "\" overflows in SI", number_start);
   return q;
 }
 
@@ -458,7 +538,7 @@ Unit parse_unit_as(std::string_view text, const Dimension& expected, std::string
   if (!(u.dimension == expected)) {
     throw UnitError(prefix + "expected " + to_string(expected) + " (e.g. " +
                         si_unit_string(expected) + "), found " + to_string(u.dimension) + " (" +
-                        std::string(trim(text)) + ")",
+                        excerpt(trim(text), 0) + ")",
                     0);
   }
   return u;
@@ -473,8 +553,8 @@ double convert(double value, std::string_view from, std::string_view to) {
   const Unit a = parse_unit(from);
   const Unit b = parse_unit(to);
   if (!(a.dimension == b.dimension)) {
-    throw UnitError("cannot convert " + std::string(trim(from)) + " (" + to_string(a.dimension) +
-                        ") to " + std::string(trim(to)) + " (" + to_string(b.dimension) + ")",
+    throw UnitError("cannot convert " + excerpt(trim(from), 0) + " (" + to_string(a.dimension) +
+                        ") to " + excerpt(trim(to), 0) + " (" + to_string(b.dimension) + ")",
                     0);
   }
   return (value * a.factor + a.offset - b.offset) / b.factor;
@@ -492,7 +572,7 @@ double parse_quantity_as(std::string_view text, const Dimension& expected, std::
     const std::string written = q.unit_text.empty() ? "no unit" : std::string(q.unit_text);
     throw UnitError(prefix + "expected " + to_string(expected) + " (e.g. " +
                         si_unit_string(expected) + "), found " + to_string(q.unit.dimension) +
-                        " (" + written + ") in \"" + std::string(text) + "\"",
+                        " (" + excerpt(written, 0) + ") in \"" + excerpt(text, 0) + "\"",
                     0);
   }
   return q.value * q.unit.factor + q.unit.offset;

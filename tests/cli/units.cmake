@@ -34,3 +34,10 @@ sigmatau_cli_test(NAME cli_units_bad_digits EXIT 2 STDERR "--digits"
   ARGS units 1 deg --digits 0)
 sigmatau_cli_test(NAME cli_units_nothing EXIT 2 STDERR "give a value with its unit"
   ARGS units)
+
+# Hostile unit texts (issue 28): 20000 nested parentheses crashed the recursive parser (SIGSEGV).
+string(REPEAT "(" 20000 sigmatau_deep_open)
+string(REPEAT ")" 20000 sigmatau_deep_close)
+sigmatau_cli_test(NAME cli_units_deep_nesting EXIT 2
+  STDERR "more than 32 nested parentheses or roots .*at column 35 of"
+  ARGS units "1 ${sigmatau_deep_open}s${sigmatau_deep_close}" --to s)
