@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "analysis_results.hpp"
+#include "dynamic_windows.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/data_checks.hpp"
@@ -156,15 +157,15 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
                                       curves[c]);
     if (options.dynamic_windows > 0) {
       const auto total = static_cast<std::int64_t>(channel.values.size());
-      const std::int64_t length = detail::dynamic_window_length(total, options.dynamic_windows);
+      const detail::DynamicWindows plan = detail::plan_dynamic_windows(total, options.dynamic_windows);
+      const std::int64_t length = plan.length;
+      if (c == 0 && !plan.warning.empty()) warnings.push_back(plan.warning);
       json windows = json::array();
-      if (length >= detail::kMinDynamicWindow) {
-        for (int w = 0; w < options.dynamic_windows; ++w) {
-          const std::int64_t start = w * length / 2;
-          const std::span<const double> part(channel.values.data() + start, static_cast<std::size_t>(length));
-          const PhaseSeries window = PhaseSeries::from_samples(part, input.kind, 1.0 / input.rate_hz);
-          windows.push_back(detail::dynamic_window_json(window, start, length, input.rate_hz));
-        }
+      for (int w = 0; w < plan.windows; ++w) {
+        const std::int64_t start = w * length / 2;
+        const std::span<const double> part(channel.values.data() + start, static_cast<std::size_t>(length));
+        const PhaseSeries window = PhaseSeries::from_samples(part, input.kind, 1.0 / input.rate_hz);
+        windows.push_back(detail::dynamic_window_json(window, start, length, input.rate_hz));
       }
       entry["dynamic"] = {{"window_s", static_cast<double>(length) / input.rate_hz}, {"windows", windows}};
     }

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "analysis_results.hpp"
+#include "dynamic_windows.hpp"
 #include "analysis_spill.hpp"
 #include "parallel_items.hpp"
 #include "sigmatau/allan_out_of_core.hpp"
@@ -222,6 +223,10 @@ AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, Analysi
   const std::int64_t samples = samples_in - trim_samples;
   results["input"] = detail::input_json(input, samples, samples_in, trim);
 
+  if (options.dynamic_windows > 0) {  // the same for every channel: said once
+    const std::string why = detail::plan_dynamic_windows(samples, options.dynamic_windows).warning;
+    if (!why.empty()) warnings.push_back(why);
+  }
   // Pass 3, per group of channels: phase (scan + PSD, then append), curves, dynamic windows.
   unsigned threads = options.threads;
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -262,8 +267,10 @@ AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, Analysi
     });
     series.clear();
     if (options.dynamic_windows > 0) {
-      const std::int64_t length = detail::dynamic_window_length(samples, options.dynamic_windows);
-      const std::size_t windows = length >= detail::kMinDynamicWindow ? options.dynamic_windows : 0;
+      const detail::DynamicWindows windows_plan =
+          detail::plan_dynamic_windows(samples, options.dynamic_windows);
+      const std::int64_t length = windows_plan.length;
+      const auto windows = static_cast<std::size_t>(windows_plan.windows);
       std::vector<json> window_json((group_end - group) * windows);
       detail::for_each_item_parallel(window_json.size(), threads, [&](std::size_t i) {
         const std::size_t c = group + i / windows;
