@@ -211,6 +211,9 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
   note_topic_choice(args.input, timing);
   note_reordering(args.input, timing, options.reorder_window);
   note_truncation(args.input, timing);
+  for (const std::string& warning : timing.warnings) {
+    std::fprintf(stderr, "sigmatau: warning: %s: %s\n", args.input.c_str(), warning.c_str());
+  }
   if (timing.rows_skipped_nonfinite > 0) {
     std::fprintf(stderr,
                  "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite "

@@ -49,14 +49,35 @@ class BagBackend {
   virtual bool next(ImuSample& sample) = 0;
   virtual std::int64_t bytes_read() const = 0;
   virtual std::int64_t total_bytes() const = 0;
+  /// Messages met by next() on a connection (ROS 1) or channel (MCAP) that no record of the bag
+  /// declares, so their topic is unknown: skipped, and said here ("" when there was none):
+  /// "skipped N message(s) on connection 9, which no connection record declares ...".
+  const std::string& undeclared_note() const { return undeclared_note_; }
 
  protected:
+  /// A message on `kind` ("connection" or "channel") `id` that no record declares, at
+  /// `location()` (called for the first one only): counted into undeclared_note().
+  template <class Location>
+  void count_undeclared(const char* kind, std::uint64_t id, const Location& location) {
+    if (undeclared_++ == 0) first_undeclared_ = std::string(kind) + " " + std::to_string(id) +
+                                                ", which no " + kind + " record declares (the "
+                                                "first: " + location() + ")";
+    undeclared_note_ = "skipped " + std::to_string(undeclared_) +
+                       (undeclared_ == 1 ? " message on " : " messages on ") + first_undeclared_ +
+                       ": its topic is unknown, the bag is corrupt there";
+  }
+
   /// A backend met a cut at `at_byte` of `file`: records it when allowed, else throws
   /// ParseError "<detail> (the recording was cut short, or the length is corrupt)".
   void cut_short(const std::string& file, std::int64_t at_byte, const std::string& detail);
 
   bool cut_allowed_ = false;
   BagCut cut_;
+
+ private:
+  std::int64_t undeclared_ = 0;
+  std::string first_undeclared_;
+  std::string undeclared_note_;
 };
 
 std::unique_ptr<BagBackend> open_ros1_bag(const std::string& path);

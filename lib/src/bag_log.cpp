@@ -232,6 +232,10 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
       if (t.name == topic_) complete = t.messages;
     }
     check_cut(complete);
+  } else {
+    for (const BagTopic& t : backend_->topics(false)) {
+      if (t.name == topic_) stated_ = t.messages;
+    }
   }
   timing_.set_policy(options.gaps, file_);
   timing_.start(true, TimeUnit::ns);
@@ -291,6 +295,7 @@ bool BagLog::pull(ImuSample& out) {
     if (!backend_->next(in)) {
       eof_ = true;
       check_cut(static_cast<std::int64_t>(seq_));
+      if (backend_->cut().at_byte < 0) count_found();
       break;
     }
     admit(in);
@@ -302,6 +307,23 @@ bool BagLog::pull(ImuSample& out) {
   if (!emitted_) first_ns_ = last_emitted_ns_;
   emitted_ = true;
   return true;
+}
+
+void BagLog::count_found() {
+  const auto found = static_cast<std::int64_t>(seq_);
+  for (BagTopic& t : listed_) {
+    if (t.name == topic_ && t.messages >= 0) t.messages = found;
+  }
+  if (stated_ < 0 || stated_ == found) return;
+  count_note_ = "the bag states " + format_count(stated_) + " on " + topic_ + ", but " +
+                std::to_string(found) + " were found in it and read";
+}
+
+std::vector<std::string> BagLog::warnings() const {
+  std::vector<std::string> out;
+  if (!backend_->undeclared_note().empty()) out.push_back(backend_->undeclared_note());
+  if (!count_note_.empty()) out.push_back(count_note_);
+  return out;
 }
 
 void BagLog::fail_nonfinite(const ImuSample& s) const {

@@ -37,7 +37,12 @@ class BagLog {
   const std::string& topic() const { return topic_; }
   /// The bag's topics as listed when no topic was asked for and the only sensor_msgs/Imu topic
   /// was picked (counts -1 where the bag does not state them); empty when a topic was given.
+  /// Once the bag is read to its end, the topic's count is the messages found in it.
   const std::vector<BagTopic>& topics_listed() const { return listed_; }
+  /// What the reading met that did not stop it (TimingReport::warnings): messages on an
+  /// undeclared connection or channel, a topic whose stated count differs from the messages
+  /// found (once read to the end).
+  std::vector<std::string> warnings() const;
 
   /// Appends up to max_rows rows to `block` (values sized to the channels, t_s). Returns the
   /// count, 0 at the end. Throws ParseError on corrupt data, a message later than the reorder
@@ -62,6 +67,9 @@ class BagLog {
   void admit(const ImuSample& in);
   std::int64_t key(const ImuSample& s) const;
   [[noreturn]] void fail_nonfinite(const ImuSample& s) const;
+  /// At the end of a bag read through: the topic's listed count becomes the messages found,
+  /// and count_note_ says so when the bag stated another count.
+  void count_found();
   /// Under TruncatedPolicy::error, a cut met by the backend is a ParseError naming it, with the
   /// `complete` messages of the topic before it (-1: not known) and how to use them.
   void check_cut(std::int64_t complete) const;
@@ -74,6 +82,8 @@ class BagLog {
   TruncatedPolicy truncated_;
   std::string topic_;
   std::vector<BagTopic> listed_;
+  std::int64_t stated_ = -1;  // messages of the topic the bag states (index, summary), or -1
+  std::string count_note_;    // stated_ against the messages found, when they differ
   ColumnSelection selection_;
   std::vector<int> fields_;  // per channel: 0..2 gyro, 3..5 accel
   // Reorder window: at most window_ + 1 messages sorted on (key_ns, seq).

@@ -123,7 +123,16 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
   m.report_stale = true;
   if (rows == 0) {
     m.finished = true;
-    m.timing.finish();
+    try {
+      m.timing.finish();
+    } catch (const ParseError& e) {
+      // A gap left by skipped bag messages: the error says what the reader skipped.
+      const std::vector<std::string> met = m.bag ? m.bag->warnings() : std::vector<std::string>{};
+      if (met.empty()) throw;
+      std::string also;
+      for (const std::string& w : met) also += "; while reading: " + w;
+      throw ParseError(e.file(), e.line(), e.column(), e.message() + also);
+    }
     return false;
   }
   return true;
@@ -142,6 +151,7 @@ const TimingReport& LogReader::timing() const {
         impl_->report.truncated_at_byte = cut.at_byte;
         impl_->report.truncated_file = cut.file;
       }
+      impl_->report.warnings = impl_->bag->warnings();
     }
     impl_->report_stale = false;
   }

@@ -543,7 +543,10 @@ class McapFile final : public BagBackend {
       return false;
     }
     const Encoding e = selected_[id];
-    if (e == Encoding::unsupported) return false;
+    if (e == Encoding::unsupported) {
+      if (!channels_.count(id)) count_undeclared("channel", id, location);
+      return false;
+    }
     const char* data = p + kMessageFieldBytes;
     const std::size_t m = n - kMessageFieldBytes;
     DecodeError err;

@@ -496,7 +496,10 @@ class Ros1Bag final : public BagBackend {
       if (it != conns_.end()) ++it->second.messages;
       return false;
     }
-    if (!is_selected(f.conn)) return false;
+    if (!is_selected(f.conn)) {
+      if (!conns_.count(f.conn)) count_undeclared("connection", f.conn, [&] { return inner_location(at); });
+      return false;
+    }
     DecodeError e;
     if (!decode_ros1_imu(c + data_at, data_len, s, e)) {
       throw_bad_message(file_.name(), inner_location(at), topic_, data_len, e);

@@ -18,6 +18,8 @@
 //   zz9.bag            a ROS 1 bag whose chunks name the compression "zz9"
 //   bad_length.mcap    an MCAP whose second chunk record claims a length of 2^40 bytes
 //   wrong_type.bag     /imu/data declared as std_msgs/String
+//   undeclared.bag     400 Imu messages, uncompressed, indexed: message 200's record names
+//                      connection 9, which nothing declares (a corrupt byte)
 //   short_imu.mcap     unchunked Imu messages, the third one's frame_id length set to 255 (too
 //                      few bytes are left for the Imu body)
 // (the ROS 2 files with tests/support/ros2_bag_writer.hpp). The byte offsets the CLI cases expect
@@ -179,6 +181,18 @@ void write_bad_bags(const fs::path& dir, const std::vector<Ros1Imu>& m) {
     const auto imu = w.add_connection("/imu/data", "sensor_msgs/Imu");
     for (const Ros1Imu& x : arrival) w.write_imu(imu, x);
     w.finish();
+  }
+  {  // undeclared.bag: the "conn=" field of message 200's record header set to 9.
+    Ros1BagWriter w((dir / "undeclared.bag").string(), {});
+    const auto imu = w.add_connection("/imu/data", "sensor_msgs/Imu");
+    std::int64_t at = -1;
+    for (std::size_t i = 0; i < 400; ++i) {
+      const std::int64_t here = w.write_imu(imu, m[i]);
+      if (i == 200) at = here;
+    }
+    w.finish();
+    const auto field = read_file(dir / "undeclared.bag").find("conn=", static_cast<std::size_t>(at));
+    patch(dir / "undeclared.bag", static_cast<std::int64_t>(field) + 5, std::string("\x09\0\0\0", 4));
   }
   const auto topics = ros2_topics(std::vector<Ros1Imu>(m.begin(), m.begin() + 2000),
                                   t2::CdrKind::xcdr1_le);

@@ -208,6 +208,11 @@ struct TimingReport {
   /// `samples` of them delivered); -1 when the recording is complete, and for other inputs.
   std::int64_t truncated_at_byte = -1;
   std::string truncated_file;  ///< the file cut short (one of a rosbag2 folder's files), or ""
+  /// What the reader met that did not stop it and the user should hear, one sentence each
+  /// (without the file name): header names that are not UTF-8 and how they were read; bag
+  /// messages on a connection no record declares (skipped, counted); a bag whose stated message
+  /// count differs from the messages found. Empty when there is nothing to say.
+  std::vector<std::string> warnings;
 };
 
 /// Streaming reader. The constructor opens the input and reads up to the first data row (so the
