@@ -11,6 +11,7 @@
 
 #include "adev_taus.hpp"
 #include "channel_units.hpp"
+#include "json_text.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "outlier_warnings.hpp"
@@ -273,7 +274,7 @@ std::string render_json(const LoadedChannels& loaded, std::size_t samples, const
                                 {"points", points}});
     }
   }
-  return doc.dump(1) + "\n";
+  return json_text(doc, 1) + "\n";
 }
 
 /// One pass over the input with an AllanStream per channel. On a read error after some samples,

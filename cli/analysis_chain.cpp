@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_text.hpp"
 #include "log_options.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
@@ -212,7 +213,7 @@ void finish(const std::function<AnalysisOutput(const AnalysisOptions&)>& analyze
     nlohmann::json warnings = notes;
     for (const auto& w : results["warnings"]) warnings.push_back(w);
     results["warnings"] = warnings;
-    analysis.results_json = results.dump(1) + "\n";
+    analysis.results_json = json_text(results, 1) + "\n";
     analysis.warnings.insert(analysis.warnings.begin(), notes.begin(), notes.end());
   }
   ReportOptions report_options;

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "json_text.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -232,7 +233,7 @@ void run_check(const CheckArguments& args) {
     nlohmann::json doc = nlohmann::json::parse(compliance_json(items, sheet, options));
     doc["tool"] = "sigmatau";
     doc["version"] = SIGMATAU_VERSION;
-    out << doc.dump(1) << "\n";
+    out << json_text(doc, 1) << "\n";
   } else {
     out << table(items, sheet, args.result, confidence);
   }

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "channel_units.hpp"
+#include "json_text.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "sigmatau/allan_curve.hpp"
@@ -183,7 +184,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     }
     doc["triads"].push_back(j);
   }
-  return doc.dump(1) + "\n";
+  return json_text(doc, 1) + "\n";
 }
 
 void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "channel_units.hpp"
+#include "json_text.hpp"
 #include "log_options.hpp"
 #include "memory_budget.hpp"
 #include "psd_stream.hpp"
@@ -201,7 +202,7 @@ void run_psd(const PsdArguments& args) {
              {"edf", nd.edf},
              {"one_sided_asd", nd.one_sided_asd * unit.density_from_si}}}});
     }
-    json_text = doc.dump(1);
+    json_text = cli::json_text(doc, 1);
     json_text += '\n';
   } else if (args.format == "csv") {
     out << "channel,frequency_hz,psd,edf,unit\n";

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "json_text.hpp"
 #include "sigmatau/allan.hpp"
 #include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
@@ -362,7 +363,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
   if (!fits.empty()) {
     json fit_doc = {{"fit", results["fit"]}, {"input", {{"rate_hz", rate_hz}}}};
     if (results.contains("unit_warnings")) fit_doc["unit_warnings"] = results["unit_warnings"];
-    present = read_fit_for_filter(fit_doc.dump(), "the fit above");
+    present = read_fit_for_filter(json_text(fit_doc), "the fit above");
   }
   if (present) {
     std::vector<double> rates = options.filter_rates_hz;
@@ -431,7 +432,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
 
   results["warnings"] = warnings;
   for (const auto& w : warnings) output.warnings.push_back(w.get<std::string>());
-  output.results_json = results.dump(1) + "\n";
+  output.results_json = json_text(results, 1) + "\n";
 }
 
 }  // namespace sigmatau::detail

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "json_text.hpp"
 #include "sigmatau/calibrate.hpp"
 #include "sigmatau/calibrate_checks.hpp"
 #include "sigmatau/units.hpp"
@@ -192,7 +193,7 @@ std::string calibration_json(const CalibrationResult& r) {
   }
   const std::vector<std::string> notes = calibration_notes(r);
   if (!notes.empty()) doc["notes"] = notes;
-  return doc.dump(2) + "\n";
+  return detail::json_text(doc, 2) + "\n";
 }
 
 std::string calibration_table(const CalibrationResult& r) {

@@ -1,6 +1,7 @@
 // Compliance verdicts: measured parameters against data-sheet limits (see compliance.hpp).
 #include "sigmatau/compliance.hpp"
 
+#include "json_text.hpp"
 #include "sigmatau/fit.hpp"
 
 #include <nlohmann/json.hpp>
@@ -314,7 +315,7 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
       {"verdict", overall_verdict(items)},
       {"failed", any_failed(items)},
       {"items", list}};
-  return doc.dump(1);
+  return detail::json_text(doc, 1);
 }
 
 }  // namespace sigmatau

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "json_text.hpp"
 #include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 
@@ -346,7 +347,7 @@ std::string json(const DiscreteNoise& n) {
     }
     doc[std::string(to_string(t->sensor))] = sensor;
   }
-  return doc.dump(2) + "\n";
+  return detail::json_text(doc, 2) + "\n";
 }
 
 }  // namespace

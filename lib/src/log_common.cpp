@@ -11,6 +11,7 @@
 
 #include "log_internal.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/text_encoding.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -101,7 +102,7 @@ std::optional<double> to_number(std::string_view field) {
 
 std::string quote_field(std::string_view field) {
   std::string out = "\"";
-  out.append(field.substr(0, kMaxQuotedField));
+  out.append(escape_non_utf8(field.substr(0, kMaxQuotedField)));
   out += field.size() > kMaxQuotedField ? "...\"" : "\"";
   return out;
 }
@@ -145,8 +146,14 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
                                const std::string& file, std::int64_t names_line,
                                std::int64_t data_line, const std::string& what) {
   const std::size_t count = names.size();
+  // Names are user data and every output needs them in UTF-8: one that is not (a Windows
+  // program's "\xB0/s") is read as Windows-1252, here, once.
+  std::vector<std::string> shown(names);
+  for (std::string& n : shown) {
+    if (!is_utf8(n)) n = utf8_from_windows1252(n);
+  }
   const auto label = [&](std::size_t c) {
-    return has_header && !names[c].empty() ? names[c] : unnamed_column(c);
+    return has_header && !shown[c].empty() ? shown[c] : unnamed_column(c);
   };
   const std::string range = "0.." + std::to_string(count - 1);
   const auto resolve = [&](const std::string& spec, const std::string& role) -> int {
@@ -164,12 +171,12 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
     if (has_header) {
       std::vector<std::size_t> hits;
       for (std::size_t c = 0; c < count; ++c) {
-        if (names[c] == spec) hits.push_back(c);
+        if (names[c] == spec || shown[c] == spec) hits.push_back(c);
       }
       if (hits.size() == 1) return static_cast<int>(hits[0]);
       if (hits.size() > 1) {
         throw ParseError(file, names_line, 0,
-                         role + " name \"" + spec + "\" is ambiguous: it names columns " +
+                         role + " name \"" + escape_non_utf8(spec) + "\" is ambiguous: it names columns " +
                              std::to_string(hits[0]) + " and " + std::to_string(hits[1]) +
                              "; use a 0-based index");
       }
@@ -178,7 +185,7 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
       const auto r = std::from_chars(spec.data() + 1, spec.data() + spec.size(), index);
       if (r.ec == std::errc() && index < count) return static_cast<int>(index);
     }
-    std::string message = "unknown " + role + " \"" + spec + "\"";
+    std::string message = "unknown " + role + " \"" + escape_non_utf8(spec) + "\"";
     if (has_header) {
       message += " (available: ";
       for (std::size_t c = 0; c < count && c < kMaxListedNames; ++c) {
@@ -227,6 +234,25 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
         throw ParseError(file, names_line, 0, what + " \"" + spec + "\" is selected twice");
       }
       add_channel(c);
+    }
+  }
+  if (has_header) {
+    std::size_t listed = 0, more = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      if (sel.slots[c] == kSkipColumn || shown[c] == names[c]) continue;
+      if (listed == kMaxListedNames) {
+        ++more;
+        continue;
+      }
+      ++listed;
+      sel.warnings.push_back("the name of column " + std::to_string(c) + ", \"" +
+                             escape_non_utf8(names[c]) +
+                             "\", is not UTF-8: it is read as Windows-1252 (Latin-1), \"" +
+                             shown[c] + "\"");
+    }
+    if (more > 0) {
+      sel.warnings.push_back(std::to_string(more) + " more column names are not UTF-8 and are "
+                             "read as Windows-1252 (Latin-1)");
     }
   }
   return sel;

@@ -55,12 +55,15 @@ std::string semicolon_hint(const std::string& where);
 struct ColumnSelection {
   std::vector<int> slots;            ///< per file column: channel index, kSkipColumn, kTimeColumn
   std::vector<int> channel_columns;  ///< per channel: its file column
-  std::vector<std::string> channel_names;
+  std::vector<std::string> channel_names;  ///< UTF-8 (names that are not: utf8_from_windows1252)
   bool has_time = false;
+  /// One per selected column whose header name is not UTF-8: how it was read (TimingReport).
+  std::vector<std::string> warnings;
 };
 
-/// Resolves the selection. `names` holds one entry per file column (header names, or empty
-/// strings without a header); `numeric[c]` says whether the first data row holds a number there.
+/// Resolves the selection. `names` holds one entry per file column (header names as read, or
+/// empty strings without a header; a name that is not UTF-8 is read as Windows-1252, matched
+/// both ways, and said in ColumnSelection::warnings); `numeric[c]` says whether the first data row holds a number there.
 /// `what` is "column" (text) or "channel" (binary). Errors are ParseError at (file, names_line, 0)
 /// for names and indices, at (file, data_line, 0) for "no numeric columns".
 ColumnSelection select_columns(const std::vector<std::string>& names, bool has_header,

@@ -10,6 +10,7 @@
 #include "byte_source.hpp"
 #include "log_internal.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/text_encoding.hpp"
 #include "text_log.hpp"
 
 namespace sigmatau {
@@ -144,14 +145,25 @@ const TimingReport& LogReader::timing() const {
     if (impl_->bag) {
       impl_->report.reordered_samples = impl_->bag->reordered_samples();
       impl_->report.max_reorder_s = impl_->bag->max_reorder_s();
-      impl_->report.bag_topic = impl_->bag->topic();
+      // Topic names and types go into every output: UTF-8, as column names are.
+      const auto utf8 = [](const std::string& s) {
+        return is_utf8(s) ? s : utf8_from_windows1252(s);
+      };
+      impl_->report.bag_topic = utf8(impl_->bag->topic());
       impl_->report.bag_topics = impl_->bag->topics_listed();
+      for (BagTopic& t : impl_->report.bag_topics) {
+        t.name = utf8(t.name);
+        t.type = utf8(t.type);
+      }
       const detail::BagCut& cut = impl_->bag->cut();
       if (cut.at_byte >= 0) {
         impl_->report.truncated_at_byte = cut.at_byte;
         impl_->report.truncated_file = cut.file;
       }
-      impl_->report.warnings = impl_->bag->warnings();
+    }
+    impl_->report.warnings = impl_->selection->warnings;
+    if (impl_->bag) {
+      for (std::string& w : impl_->bag->warnings()) impl_->report.warnings.push_back(std::move(w));
     }
     impl_->report_stale = false;
   }

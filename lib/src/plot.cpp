@@ -23,6 +23,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
+#include "sigmatau/text_encoding.hpp"
 #include "scratch_dir.hpp"
 
 extern char** environ;
@@ -30,8 +31,15 @@ extern char** environ;
 namespace sigmatau {
 namespace {
 
+/// Text for a plot: UTF-8 (what the SVG, PNG and PDF terminals write), a name that is not
+/// read as Windows-1252 (text_encoding.hpp) so that the SVG stays well-formed XML.
+std::string plot_text(std::string_view text) {
+  return is_utf8(text) ? std::string(text) : utf8_from_windows1252(text);
+}
+
 /// A gnuplot single-quoted string literal ('' stands for one quote).
-std::string gnuplot_string(std::string_view text) {
+std::string gnuplot_string(std::string_view raw) {
+  const std::string text = plot_text(raw);
   std::string s = "'";
   for (char c : text) {
     if (c == '\'') s += "''";
@@ -80,7 +88,7 @@ void write_blocks(const std::filesystem::path& file, const std::vector<PlotCurve
   out.precision(10);
   for (const auto& curve : curves) {
     std::string title;
-    for (char c : curve.name) title += (c == '"' || c == '\\' || c == '\n') ? ' ' : c;
+    for (char c : plot_text(curve.name)) title += (c == '"' || c == '\\' || c == '\n') ? ' ' : c;
     out << '"' << title << "\"" << (with_band ? " 0 0 0" : " 0") << '\n';
     for (std::size_t i = 0; i < curve.x.size(); ++i) {
       const double x = curve.x[i], y = curve.y[i];
@@ -304,7 +312,7 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
                           : r.verdict == "inconclusive" ? "0x7f7f7f"
                                                         : "0xd62728";
       std::string label;
-      for (char c : r.label) label += (c == '"') ? ' ' : c;
+      for (char c : plot_text(r.label)) label += (c == '"') ? ' ' : c;
       // Reversed rows so the first item is at the top.
       out << (plot.rows.size() - 1 - i) << ' ' << r.ratio << ' ' << r.ratio_low << ' '
           << r.ratio_high << ' ' << color << " \"" << label << "\" " << (r.detected ? 1 : 0) << "\n";

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "json_text.hpp"
 #include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -332,7 +333,7 @@ std::string simulation_sidecar_json(const SimulationConfig& c, SampleFormat form
   }
   if (const auto warnings = simulation_warnings(c); !warnings.empty()) j["warnings"] = warnings;
   j["theory"] = theory;
-  return j.dump(2) + "\n";
+  return detail::json_text(j, 2) + "\n";
 }
 
 void write_simulation(const SimulationConfig& config, const std::filesystem::path& path,

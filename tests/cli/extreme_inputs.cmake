@@ -26,3 +26,39 @@ sigmatau_cli_test(NAME cli_extreme_bag_undeclared_gap EXIT 2
   STDERR "time stamp gap of 10 ms .*before data row 200.*. while reading: skipped 1 message on connection 9"
   ARGS adev ${CMAKE_CURRENT_BINARY_DIR}/cli_bags/undeclared.bag --stat oadev)
 set_tests_properties(cli_extreme_bag_undeclared_gap PROPERTIES FIXTURES_REQUIRED cli_bags)
+
+# Names that are not UTF-8 (issue 28): a header written by a Windows program holds "°" as the
+# byte 0xB0 (Windows-1252), and a file name may hold 0xE9 (é in Latin-1). JSON output ended in
+# "internal error: [json.exception.type_error.316]", exit 3, in adev/psd/fit --format json and
+# analyze. Now the name is read as Windows-1252 with a warning, every output is UTF-8, and the
+# name shows as "temp °C" in JSON, Markdown, HTML and plot labels; a file name that is not UTF-8
+# is written with U+FFFD in JSON.
+set(extreme_utf8_check [=[
+printf 't,gx,gy,temp \xb0C\n' > "$W/latin1.csv"
+awk -F, 'NR > 2 { print $0 "," 25 + $2 }' "$LOG" >> "$W/latin1.csv"
+cp "$W/latin1.csv" "$W/caf"$'\xe9'".csv"
+utf8() { iconv -f UTF-8 -t UTF-8 "$1" > /dev/null 2>&1 || fail "$1 is not UTF-8"; }
+for input in "$W/latin1.csv" "$W/caf"$'\xe9'".csv"; do
+  for verb in adev psd fit; do
+    run $verb "$input" --time-column t --unit deg/s --format json -o "$W/$verb.json" --force
+    expect 0 'the name of column 3, "temp \\xB0C", is not UTF-8: it is read as Windows-1252 \(Latin-1\), "temp °C"'
+    utf8 "$W/$verb.json"
+    grep -q '"temp °C"' "$W/$verb.json" || fail "$verb.json does not name \"temp °C\""
+  done
+  run adev "$input" --time-column t --plot "$W/adev.svg" -o "$W/adev.txt" --force
+  expect 0 "is not UTF-8"
+  utf8 "$W/adev.svg"
+  grep -q 'temp °C' "$W/adev.svg" || fail "the plot's legend does not name \"temp °C\""
+  run analyze "$input" --time-column t -o "$W/report" --force
+  expect 0 "is not UTF-8"
+  for f in "$W"/report/*; do utf8 "$f"; done
+  for f in results.json summary.md report.html; do
+    grep -q 'temp °C' "$W/report/$f" || fail "$f does not name \"temp °C\""
+  done
+done
+grep -q $'/caf\xef\xbf\xbd.csv"' "$W/report/results.json" || fail "the path is not written with U+FFFD"
+echo "ok: every output UTF-8, the name read as Windows-1252"
+]=])
+add_test(NAME cli_extreme_names_not_utf8
+         COMMAND bash -c "${sigmatau_cli_shell_prologue}${extreme_utf8_check}" extreme_utf8
+                 $<TARGET_FILE:sigmatau_cli> ${extreme_dir}/utf8 ${extreme_white})
