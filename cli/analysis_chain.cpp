@@ -17,6 +17,7 @@
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/resources.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau::cli {
 namespace {
@@ -48,9 +49,7 @@ AnalysisOptions chain_options(const ChainArguments& args) {
                                            ? args.trim + " s" : args.trim,
                                        dim::time, "--trim");
   }
-  for (double r : args.rate_out) {
-    if (!(r > 0)) throw Error("--rate-out must be > 0 Hz, got " + std::to_string(r));
-  }
+  for (double r : args.rate_out) checked_rate_hz(r, "--rate-out");
   options.filter_rates_hz = args.rate_out;
   if (!args.spec.empty()) options.spec = load_data_sheet(find_data_sheet(args.spec, resource_dir("specs")));
   options.convention = parse_density_convention(args.convention);

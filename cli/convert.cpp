@@ -9,6 +9,7 @@
 #include "sigmatau/filter_export.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/spec.hpp"
 #include "sigmatau/units.hpp"
 #include "log_options.hpp"
@@ -68,11 +69,12 @@ Sensor typed_sensor(const ConvertArguments& args) {
 void run_convert(const ConvertArguments& args) {
   ConvertOptions options;
   if (args.rate.empty()) throw Error("--rate is required (the filter's IMU rate, e.g. 200 Hz)");
-  options.rate_hz = quantity_option(args.rate, dim::frequency, "--rate", "Hz");
+  options.rate_hz = checked_rate_hz(quantity_option(args.rate, dim::frequency, "--rate", "Hz"), "--rate");
   options.bias_model = parse_bias_model(args.bias_model);
-  options.t_ref_s = quantity_option(args.tref, dim::time, "--tref", "s");
+  options.t_ref_s = checked_time_s(quantity_option(args.tref, dim::time, "--tref", "s"), "--tref");
   if (!args.tau_min.empty()) {
-    options.tau_min_s = quantity_option(args.tau_min, dim::time, "--tau-min", "s");
+    options.tau_min_s =
+        checked_time_s(quantity_option(args.tau_min, dim::time, "--tau-min", "s"), "--tau-min");
   }
   options.inflate = args.inflate;
   options.convention = parse_density_convention(args.convention);

@@ -17,6 +17,7 @@
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/resources.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/simulate.hpp"
 #include "sigmatau/simulate_spec.hpp"
 #include "sigmatau/units.hpp"
@@ -145,13 +146,14 @@ std::string demo_description(const DataSheet& sheet, const DemoArguments& args,
 
 void run_demo(const DemoArguments& args) {
   const DataSheet sheet = load_data_sheet(find_data_sheet(args.sheet, resource_dir("specs")));
-  if (!(args.hours > 0) || !(args.rate_hz > 0)) throw Error("--hours and --rate must be > 0");
+  checked_rate_hz(args.rate_hz, "--rate");
+  if (!(args.hours > 0)) throw Error("--hours must be > 0");
   check_sheet_noise_scale(args.scale);
   DemoNoise noise = demo_noise(sheet, parse_density_convention(args.chain.convention), args.scale);
   check_output(args.chain);  // before the simulation
   SimulationConfig& config = noise.config;
   config.rate_hz = args.rate_hz;
-  config.samples = static_cast<std::int64_t>(std::llround(args.hours * 3600 * args.rate_hz));
+  config.samples = checked_samples(args.hours * 3600, args.rate_hz, "--hours");
   config.seed = args.seed;
   StaticPose pose;
   pose.latitude_rad = 45.0 * kRadiansPerDegree;

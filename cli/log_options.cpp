@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau::cli {
 
@@ -50,7 +51,9 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
           [](const std::string& text) {
             // "100 Hz" or "2 kHz" as convert reads its --rate: the same parser, in Hz.
             char hz[40];
-            std::snprintf(hz, sizeof hz, "%.17g", quantity_option(text, dim::frequency, "--rate", "Hz"));
+            std::snprintf(hz, sizeof hz, "%.17g",
+                          checked_rate_hz(quantity_option(text, dim::frequency, "--rate", "Hz"),
+                                          "--rate"));
             return std::string(hz);
           },
           "", "Hz");

@@ -13,6 +13,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
 #include "sigmatau/resources.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/spec.hpp"
 #include "sigmatau/simulate.hpp"
 #include "sigmatau/simulate_spec.hpp"
@@ -207,7 +208,7 @@ Eigen::Vector3d triple(const std::string& text, const Dimension& d, const std::s
 void run_simulate(const SimulateArguments& a) {
   SimulationConfig c;
   c.rate_hz = a.rate_hz;
-  if (!(a.rate_hz > 0)) throw Error("--rate must be > 0 Hz");
+  checked_rate_hz(a.rate_hz, "--rate");
   StaticPose pose;
   pose.latitude_rad = parse_quantity_as(a.latitude, dim::angle, "--latitude");
   if (a.positions > 0) {

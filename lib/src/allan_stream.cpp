@@ -29,6 +29,7 @@
 #include "allan_stream_phase.hpp"
 #include "allan_stream_terms.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau {
 namespace {
@@ -222,10 +223,7 @@ struct AllanStream::Impl {
 AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& settings)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  if (!(tau0_s > 0.0 && std::isfinite(tau0_s))) {
-    throw Error("sample interval tau0 must be a finite number > 0 s, got " +
-                std::to_string(tau0_s));
-  }
+  checked_interval_s(tau0_s, "sample interval tau0_s");
   if (!(settings.density >= 1 && settings.density <= (1 << 20))) {
     throw Error("--density must be an integer from 1 to 1048576, got " +
                 std::to_string(settings.density));

@@ -17,6 +17,7 @@
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/data_checks.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/rate_series.hpp"
@@ -47,7 +48,7 @@ std::string file_crc32(const std::string& path) {
 
 AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options) {
   if (input.channels.empty()) throw Error(input.path + ": no channel to analyse");
-  if (!(input.rate_hz > 0)) throw Error(input.path + ": sample rate must be > 0");
+  checked_rate_hz(input.rate_hz, input.path + ": rate_hz");
   if (options.statistics.empty()) throw Error("no statistic asked for");
   AnalysisOutput output;
   json results = detail::results_header(options);

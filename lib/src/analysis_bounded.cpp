@@ -28,6 +28,7 @@
 #include "sigmatau/analysis.hpp"
 #include "sigmatau/data_checks.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 #include "sigmatau/rate_series.hpp"
 #include "sigmatau/warmup.hpp"
@@ -181,7 +182,7 @@ AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, Analysi
     throw ParseError(input.path, 0, 0, "no samples: the input holds no data rows");
   }
   input.rate_hz = source.rate_hz(timing);
-  if (!(input.rate_hz > 0)) throw Error(input.path + ": sample rate must be > 0");
+  checked_rate_hz(input.rate_hz, input.path + ": rate_hz");
   if (timing.has_time) input.timing = timing;
   if (timing.segment_starts.size() > 1) {
     throw Error("--gaps split: the bounded-memory analysis does not split segments");

@@ -11,6 +11,7 @@
 #include "sigmatau/error.hpp"
 #include "sigmatau/filter_export.hpp"
 #include "sigmatau/fit.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/taus.hpp"
 #include "sigmatau/units.hpp"
 
@@ -205,7 +206,7 @@ std::int64_t requested_trim(const AnalysisOptions& options, double rate_hz, json
   if (options.trim == TrimMode::fixed) {
     if (!(options.trim_s >= 0)) throw Error("--trim must be >= 0 s");
     trim["reason"] = "trimmed " + std::to_string(options.trim_s) + " s as asked (--trim)";
-    return static_cast<std::int64_t>(std::llround(options.trim_s * rate_hz));
+    return checked_samples(options.trim_s, rate_hz, "trim_s");
   }
   trim["reason"] = "not trimmed (--trim none)";
   return 0;

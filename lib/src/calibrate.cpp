@@ -18,6 +18,7 @@
 
 #include "calibrate_internal.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau {
 namespace {
@@ -141,8 +142,7 @@ void check_options(const CalibrationOptions& o) {
 
 CalibrationResult calibrate(const CalibrationInput& in, const CalibrationOptions& o) {
   check_options(o);
-  if (!(in.rate_hz > 0) || !std::isfinite(in.rate_hz))
-    throw Error("calibrate: the sample rate must be > 0 Hz");
+  checked_rate_hz(in.rate_hz, "calibrate: rate_hz");
   return detail::calibrate_samples(detail::InputSamples(in), o);
 }
 

@@ -13,6 +13,7 @@
 #include "calibrate_internal.hpp"
 #include "sigmatau/calibrate.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau {
 namespace {
@@ -177,16 +178,14 @@ void batch_ratio(const std::array<double, kBatches>& sums, std::int64_t n, doubl
 }  // namespace
 
 StaticDetection detect_static_intervals(const CalibrationInput& in, const CalibrationOptions& o) {
-  if (!(in.rate_hz > 0) || !std::isfinite(in.rate_hz))
-    throw Error("calibrate: the sample rate must be > 0 Hz");
+  checked_rate_hz(in.rate_hz, "calibrate: rate_hz");
   return detail::detect_static(detail::InputSamples(in), o);
 }
 
 namespace detail {
 
 StaticDetection detect_static(const CalibrationSamples& in, const CalibrationOptions& o) {
-  if (!(in.rate_hz() > 0) || !std::isfinite(in.rate_hz()))
-    throw Error("calibrate: the sample rate must be > 0 Hz");
+  checked_rate_hz(in.rate_hz(), "calibrate: rate_hz");
   const bool gyro = in.has_gyro();
   const bool temperature = in.has_temperature();
   const std::int64_t samples = in.rows();

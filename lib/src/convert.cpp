@@ -21,6 +21,7 @@
 
 #include "sigmatau/display_units.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 
 namespace sigmatau {
@@ -70,15 +71,9 @@ void check_correlation(const Eigen::Matrix3d& c, const char* what) {
 }
 
 void check_options(const ConvertOptions& o) {
-  if (!(o.rate_hz > 0) || !std::isfinite(o.rate_hz)) {
-    throw Error("rate: found " + num(o.rate_hz) + " Hz, expected a rate > 0");
-  }
-  if (!(o.t_ref_s > 0) || !std::isfinite(o.t_ref_s)) {
-    throw Error("T_ref: found " + num(o.t_ref_s) + " s, expected a time > 0");
-  }
-  if (o.tau_min_s && (!(*o.tau_min_s > 0) || !std::isfinite(*o.tau_min_s))) {
-    throw Error("tau_min: found " + num(*o.tau_min_s) + " s, expected a time > 0");
-  }
+  checked_rate_hz(o.rate_hz, "rate_hz");
+  checked_time_s(o.t_ref_s, "t_ref_s");
+  if (o.tau_min_s) checked_time_s(*o.tau_min_s, "tau_min_s");
   if (!(o.inflate > 0) || !std::isfinite(o.inflate)) {
     throw Error("inflation factor: found " + num(o.inflate) + ", expected a factor > 0");
   }

@@ -9,6 +9,7 @@
 
 #include "fit_internal.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 
 namespace sigmatau {
@@ -97,9 +98,7 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     throw Error("fit needs an OADEV curve, got " + std::string(to_string(curve.statistic)) +
                 " (rerun adev with --stat oadev)");
   }
-  if (!(source.tau0_s > 0) || !std::isfinite(source.tau0_s)) {
-    throw Error("fit: sample interval must be > 0 s");
-  }
+  checked_interval_s(source.tau0_s, "fit: sample interval tau0_s");
   if (!(source.n_phase_points >= 3)) throw Error("fit: the log has fewer than 2 samples");
   if (!(options.confidence_level > 0 && options.confidence_level < 1)) {
     throw Error("--ci: confidence level must be in (0, 1), got " +

@@ -4,12 +4,14 @@
 #include "sigmatau/log_reader.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "bag_log.hpp"
 #include "binary_log.hpp"
 #include "byte_source.hpp"
 #include "log_internal.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/text_encoding.hpp"
 #include "text_log.hpp"
 
@@ -205,12 +207,7 @@ Log read_log(const LogOptions& options,
 
 double resolve_rate_hz(std::optional<double> rate_hz, const TimingReport& timing,
                        const std::string& path) {
-  if (rate_hz) {
-    if (!(*rate_hz > 0 && std::isfinite(*rate_hz))) {
-      throw Error("--rate must be a positive number of Hz, got " + std::to_string(*rate_hz));
-    }
-    return *rate_hz;
-  }
+  if (rate_hz) return checked_rate_hz(*rate_hz, "rate_hz");
   if (!timing.has_time) {
     throw Error(path +
                 ": no --rate and no time column: give the sample rate (--rate HZ) or the "
@@ -220,6 +217,15 @@ double resolve_rate_hz(std::optional<double> rate_hz, const TimingReport& timing
     throw Error(path +
                 ": cannot measure the sample rate from the time column (fewer than 2 "
                 "stamps, or the median interval is not > 0); give --rate HZ");
+  }
+  if (!(timing.rate_hz >= kMinRateHz && timing.rate_hz <= kMaxRateHz)) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  ": the time column's stamps are %.6g s apart (median), a rate of %.6g Hz, "
+                  "outside the rates sigmatau computes with (%g to %g Hz); check the time "
+                  "column and the unit of its stamps",
+                  1 / timing.rate_hz, timing.rate_hz, kMinRateHz, kMaxRateHz);
+    throw Error(path + text);
   }
   return timing.rate_hz;
 }

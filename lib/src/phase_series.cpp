@@ -19,6 +19,7 @@
 #include "allan_dd.hpp"
 #include "phase_store.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau {
 namespace {
@@ -32,11 +33,7 @@ constexpr int kLanes = 8;
 constexpr std::int64_t kPrefixBlock = 4096;
 static_assert(kMeanBlock % kLanes == 0, "lane of sample i is i mod kLanes");
 
-void check_tau0(double tau0_s) {
-  if (!(tau0_s > 0.0 && std::isfinite(tau0_s))) {
-    throw Error("sample interval tau0 must be a finite number > 0 s, got " + std::to_string(tau0_s));
-  }
-}
+void check_tau0(double tau0_s) { checked_interval_s(tau0_s, "sample interval tau0_s"); }
 
 /// Names the first non-finite value of v (index first + i in the whole log).
 [[noreturn]] void throw_non_finite(std::span<const double> v, std::int64_t first, const char* what) {

@@ -22,6 +22,7 @@
 
 #include "fftw_planner.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 
 namespace sigmatau {
 namespace {
@@ -183,9 +184,7 @@ struct WelchAccumulator::Impl {
 WelchAccumulator::WelchAccumulator(double rate_hz, const WelchOptions& options,
                                    std::int64_t expected_samples)
     : impl_(std::make_unique<Impl>()) {
-  if (!(rate_hz > 0) || !std::isfinite(rate_hz)) {
-    throw Error("PSD: sample rate must be > 0 Hz, got " + std::to_string(rate_hz));
-  }
+  checked_rate_hz(rate_hz, "PSD: rate_hz");
   if (!(options.overlap >= 0 && options.overlap < 1)) {
     throw Error("PSD: overlap must be in [0, 1), got " + std::to_string(options.overlap));
   }

@@ -3,6 +3,7 @@
 // Glossary (simulate.hpp, THEORY.md section 6): tau0 = 1/rate [s]; k sample index; chunk = the
 // block of kChunk samples every channel computes at a time (a power of two, so it divides the
 // flicker block L and the random sub-block size divides it); w unit normals; e centred uniforms.
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/simulate.hpp"
 
 #include <algorithm>
@@ -94,8 +95,7 @@ std::string_view to_string(OutputKind kind) {
 }
 
 void validate(const SimulationConfig& c) {
-  if (!(c.rate_hz > 0) || !std::isfinite(c.rate_hz))
-    throw Error("simulation: rate must be > 0 Hz, got " + std::to_string(c.rate_hz));
+  checked_rate_hz(c.rate_hz, "simulation: rate_hz");
   if (!(c.samples >= 1))
     throw Error("simulation: the log needs at least one sample (rate x duration >= 1)");
   if (!c.gyro && !c.accel) throw Error("simulation: no sensor selected (gyro and/or accel)");

@@ -3,6 +3,7 @@
 // Glossary: N = number of phase points, m = averaging factor, tau0 = sample interval [s].
 // Stable32's stop ratios (quoted in allantools' tau_generator, THEORY.md 1.6): the largest m
 // reported is (N-1)/ratio, beyond which a statistic has too few terms to mean much.
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/taus.hpp"
 
 #include <algorithm>
@@ -125,9 +126,7 @@ std::int64_t max_averaging_factor(Statistic statistic, std::int64_t n_phase_poin
 
 std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic statistic,
                                             std::int64_t n_phase_points, double tau0_s) {
-  if (!(tau0_s > 0.0 && std::isfinite(tau0_s))) {
-    throw Error("sample interval tau0 must be a finite number > 0 s, got " + std::to_string(tau0_s));
-  }
+  checked_interval_s(tau0_s, "sample interval tau0_s");
   const std::int64_t max_m = max_averaging_factor(statistic, n_phase_points);
   std::vector<std::int64_t> m;
   switch (spec.kind) {

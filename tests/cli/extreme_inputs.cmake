@@ -62,3 +62,43 @@ echo "ok: every output UTF-8, the name read as Windows-1252"
 add_test(NAME cli_extreme_names_not_utf8
          COMMAND bash -c "${sigmatau_cli_shell_prologue}${extreme_utf8_check}" extreme_utf8
                  $<TARGET_FILE:sigmatau_cli> ${extreme_dir}/utf8 ${extreme_white})
+
+# Rates and times whose arithmetic overflows (issue 28): one check (sampling_limits.hpp) in every
+# verb, the flag named. `fit --rate 1e80` gave terms of 0 with NaN intervals and p = nan, exit 0.
+foreach(verb adev psd fit calibrate)
+  sigmatau_cli_test(NAME cli_extreme_rate_${verb} EXIT 2
+    STDERR "--rate must be a rate from 1e-09 Hz to 1e\\+12 Hz .*got 1e\\+80 Hz"
+    ARGS ${verb} ${extreme_white} --rate 1e80)
+endforeach()
+sigmatau_cli_test(NAME cli_extreme_rate_analyze EXIT 2
+  STDERR "--rate must be a rate from 1e-09 Hz to 1e\\+12 Hz .*got 1e-80 Hz"
+  ARGS analyze ${extreme_white} --rate 1e-80 -o ${extreme_dir}/rate_analyze --force)
+sigmatau_cli_test(NAME cli_extreme_rate_out EXIT 2
+  STDERR "--rate-out must be a rate from 1e-09 Hz to 1e\\+12 Hz .*got 1e\\+300 Hz"
+  ARGS analyze ${extreme_white} --time-column t --rate-out 1e300 -o ${extreme_dir}/rate_out --force)
+sigmatau_cli_test(NAME cli_extreme_rate_convert EXIT 2 STDERR "--rate must be a rate from 1e-09 Hz"
+  ARGS convert --spec bosch_bmi088 --rate 1e80 --to kalibr)
+sigmatau_cli_test(NAME cli_extreme_tref_convert EXIT 2
+  STDERR "--tref must be a time from 1e-12 s to 1e\\+18 s, got 1e\\+300 s"
+  ARGS convert --spec adi_adis16465 --rate 200 --tref 1e300 --to kalibr)
+sigmatau_cli_test(NAME cli_extreme_rate_simulate EXIT 2 STDERR "--rate must be a rate from 1e-09 Hz"
+  ARGS simulate --model "N=0.15 deg/sqrt(h)" --rate 1e80 --duration 1s -o ${extreme_dir}/sim.csv --force)
+sigmatau_cli_test(NAME cli_extreme_rate_demo EXIT 2 STDERR "--rate must be a rate from 1e-09 Hz"
+  ARGS demo --rate 1e-80 -o ${extreme_dir}/demo --force)
+# A trim of 1e300 s became -2^63 samples (a negative trim, exit 0).
+sigmatau_cli_test(NAME cli_extreme_trim EXIT 2
+  STDERR "trim_s: 1e\\+300 s at 10 Hz is 1e\\+301 samples, more than any log holds"
+  ARGS analyze ${extreme_white} --time-column t --trim 1e300 -o ${extreme_dir}/trim --force)
+# A time column 1e20 s apart measures 1e-20 Hz: refused, naming the column.
+set(extreme_far_stamps ${extreme_dir}/far_stamps.csv)
+set(extreme_text "t,gx\n")
+foreach(i RANGE 40)
+  math(EXPR v "(${i} * 7919) % 13")
+  string(APPEND extreme_text "${i}e20,${v}\n")
+endforeach()
+file(WRITE ${extreme_far_stamps} "${extreme_text}")
+foreach(verb adev psd fit)
+  sigmatau_cli_test(NAME cli_extreme_time_column_${verb} EXIT 2
+    STDERR "far_stamps.csv: the time column's stamps are 1e\\+20 s apart \\(median\\), a rate of 1e-20 Hz, outside the rates sigmatau computes with"
+    ARGS ${verb} ${extreme_far_stamps} --time-column t --unit deg/s)
+endforeach()
