@@ -130,7 +130,7 @@ AnalysisInput input_provenance(const std::string& path, DataKind kind) {
 bool needs_bounded(const AnalyzeArguments& args) {
   const std::int64_t memory = parse_bytes(args.memory);
   if (args.log.gaps == "split" || args.log.gaps == "fill") return false;
-  const std::int64_t values = estimated_values(args.log);
+  const std::int64_t values = estimated_values(args.log, memory / kAnalyzeBytesPerValue);
   return values >= 0 && values > memory / kAnalyzeBytesPerValue;
 }
 

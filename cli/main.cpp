@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,13 @@ int main(int argc, char** argv) {
     return status.code;
   } catch (const sigmatau::Error& e) {
     std::cerr << "sigmatau: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // Not a bug: an input larger than memory where its size could not be told first (a pipe,
+    // which exact mode holds whole).
+    std::cerr << "sigmatau: error: out of memory: the input needs more memory than this machine "
+                 "gives; if it comes from a pipe, save it to a file (then --memory applies) or "
+                 "use a bounded mode (adev --mode stream)\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "sigmatau: internal error: " << e.what() << "\n";

@@ -8,8 +8,8 @@
 
 namespace sigmatau::cli {
 
-/// Bytes from "1GiB", "512MiB", "800M", "2G", "123456" (K/M/G/T decimal, Ki/Mi/Gi/Ti binary,
-/// an optional trailing B). Throws Error naming --memory otherwise.
+/// Bytes from "1GiB", "512MiB", "800M", "2G", "123456" (K/M/G/T/P decimal, Ki/Mi/Gi/Ti/Pi
+/// binary, an optional trailing B), from 1 to 2^60. Throws Error naming --memory otherwise.
 std::int64_t parse_bytes(const std::string& text);
 
 /// Bytes the exact in-memory Allan path needs per sample and channel: the raw value (8) while
@@ -17,10 +17,11 @@ std::int64_t parse_bytes(const std::string& text);
 constexpr std::int64_t kExactBytesPerSample = 32;
 
 /// Values (samples x channels) a seekable input file holds, estimated from its size: exact for
-/// raw binary, at least bytes / 4 for text (a value and its delimiter take >= 4 bytes in
+/// raw binary, at most bytes / 4 for text (a value and its delimiter take >= 4 bytes in
 /// practice), bytes / kBagBytesPerValue for a ROS bag, -1 for stdin, a rosbag2 folder or when the
-/// size is unknown. Gzip files are counted as stored.
-std::int64_t estimated_values(const LogArguments& log);
+/// size is unknown. A gzip file counts what it inflates to (inflated_size.hpp), counted up to
+/// the bytes of `enough_values` values (-1: all): a return above enough_values means "more".
+std::int64_t estimated_values(const LogArguments& log, std::int64_t enough_values = -1);
 
 /// Whether exact Allan curves of `log` would need more than `memory_bytes` in memory, so that
 /// they are computed out of core (allan_out_of_core.hpp) instead. Never for stdin (it cannot be

@@ -107,6 +107,10 @@ std::vector<DensityUnit> density_units(const LoadedChannels& loaded, const std::
 void run_psd(const PsdArguments& args) {
   WelchOptions options;
   options.segment_length = args.segment;
+  if (args.segment > kMaxSegmentLength) {
+    throw Error("--segment must be at most " + std::to_string(kMaxSegmentLength) +
+                " samples (FFTW's transform length is an int), got " + std::to_string(args.segment));
+  }
   options.overlap = args.overlap;
   options.window = parse_window(args.window);
   options.detrend = parse_detrend(args.detrend);

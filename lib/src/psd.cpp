@@ -151,6 +151,21 @@ struct WelchAccumulator::Impl {
     fftw_free(out);
   }
 
+  /// The segment-sized buffers and the plan, made when the first segment is complete: a
+  /// segment longer than the log then costs nothing before result() says so (a segment of 1e8
+  /// on a 3000-sample log spent 1.5 GB and 16 s, one of 2^31 - 1 ended in bad_alloc).
+  void allocate() {
+    window = make_window(options.window, length);
+    for (double v : window) window_power += v * v;
+    power_sum.assign(static_cast<std::size_t>(length / 2 + 1), 0.0);
+    std::lock_guard lock(detail::fftw_planner_mutex());
+    in = fftw_alloc_real(static_cast<std::size_t>(length));
+    out = fftw_alloc_complex(static_cast<std::size_t>(length / 2 + 1));
+    if (!in || !out) throw Error("PSD: out of memory for a segment of " + std::to_string(length));
+    // FFTW_ESTIMATE: planning cost is negligible and results do not depend on timing measurements.
+    plan = fftw_plan_dft_r2c_1d(static_cast<int>(length), in, out, FFTW_ESTIMATE);
+  }
+
   void process_segment(const double* x) {
     for (std::int64_t n = 0; n < length; ++n) in[n] = x[n];
     if (options.detrend == Detrend::mean) {
@@ -194,20 +209,15 @@ WelchAccumulator::WelchAccumulator(double rate_hz, const WelchOptions& options,
     length = default_segment_length(expected_samples);
   }
   if (length < 4) throw Error("PSD: segment length must be >= 4 samples, got " + std::to_string(length));
+  if (length > kMaxSegmentLength) {
+    throw Error("PSD: segment_length must be at most " + std::to_string(kMaxSegmentLength) +
+                " samples (FFTW's transform length is an int), got " + std::to_string(length));
+  }
   auto& d = *impl_;
   d.rate_hz = rate_hz;
   d.options = options;
   d.length = length;
   d.step = std::max<std::int64_t>(1, length - static_cast<std::int64_t>(std::llround(options.overlap * static_cast<double>(length))));
-  d.window = make_window(options.window, length);
-  for (double v : d.window) d.window_power += v * v;
-  d.power_sum.assign(static_cast<std::size_t>(length / 2 + 1), 0.0);
-  std::lock_guard lock(detail::fftw_planner_mutex());
-  d.in = fftw_alloc_real(static_cast<std::size_t>(length));
-  d.out = fftw_alloc_complex(static_cast<std::size_t>(length / 2 + 1));
-  if (!d.in || !d.out) throw Error("PSD: out of memory for a segment of " + std::to_string(length));
-  // FFTW_ESTIMATE: planning cost is negligible and results do not depend on timing measurements.
-  d.plan = fftw_plan_dft_r2c_1d(static_cast<int>(length), d.in, d.out, FFTW_ESTIMATE);
 }
 
 WelchAccumulator::~WelchAccumulator() = default;
@@ -225,6 +235,7 @@ void WelchAccumulator::add(std::span<const double> samples) {
                      samples.begin() + static_cast<std::ptrdiff_t>(used + take));
     used += take;
     if (d.pending.size() == length) {
+      if (!d.plan) d.allocate();
       d.process_segment(d.pending.data());
       if (step >= length) {
         d.pending.clear();

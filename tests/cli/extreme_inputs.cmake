@@ -102,3 +102,56 @@ foreach(verb adev psd fit)
     STDERR "far_stamps.csv: the time column's stamps are 1e\\+20 s apart \\(median\\), a rate of 1e-20 Hz, outside the rates sigmatau computes with"
     ARGS ${verb} ${extreme_far_stamps} --time-column t --unit deg/s)
 endforeach()
+
+# Resource traps (issue 28).
+# --memory 1e300 overflowed the int64 byte count (undefined behaviour).
+sigmatau_cli_test(NAME cli_extreme_memory_overflow EXIT 2
+  STDERR "--memory must be from 1 byte to 2\\^60 bytes \\(1024PiB\\), got \"1e300\""
+  ARGS adev ${extreme_white} --time-column t --memory 1e300)
+# A --segment FFTW cannot transform (its length is an int) is refused before anything is made.
+sigmatau_cli_test(NAME cli_extreme_psd_segment_int EXIT 2
+  STDERR "--segment must be at most 2147483647 samples"
+  ARGS psd ${extreme_white} --time-column t --segment 2147483648)
+# Under a 1 GiB address-space limit a segment longer than the log allocates nothing before it
+# says so (main: bad_alloc, exit 3; without the limit, 2.7 GB and 8 s for 1e8 on 2 channels),
+# and an input that does not fit in memory is a clear error,
+# exit 2 (a pipe exact mode must hold whole; main: "internal error: std::bad_alloc", exit 3).
+# The limit cannot hold under AddressSanitizer (sanitize_skip, as bad_inputs.cmake).
+set(extreme_limited [=[
+ulimit -v 1048576 || exit 1
+for segment in 100000000 2147483647; do
+  run psd "$LOG" --time-column t --segment $segment
+  expect 2 "the log is shorter than one segment of $segment samples"
+done
+# 30 M rows "1,2,3" through a pipe: 9e7 values, 2.9 GB held in exact mode.
+yes 1,2,3 | head -n 30000000 | "$S" adev - --rate 100 --stat oadev > /dev/null 2> "$W/.stderr"
+rc=${PIPESTATUS[2]}; err=$(cat "$W/.stderr")
+expect 2 "out of memory: the input needs more memory than this machine gives; if it comes from a pipe"
+]=])
+add_test(NAME cli_extreme_limited_memory
+         COMMAND bash -c "${sigmatau_cli_shell_prologue}${extreme_limited}" extreme_limited
+                 $<TARGET_FILE:sigmatau_cli> ${extreme_dir}/limited ${extreme_white})
+set_tests_properties(cli_extreme_limited_memory PROPERTIES LABELS sanitize_skip TIMEOUT 120)
+
+# A gzip bomb: 7.1 MB of text rows in 61 KB of gzip (117x). The memory estimate used the stored
+# size (8 KB: in memory) and let such a file take 776 MB under --memory 64MiB (1 GiB of text:
+# bad_alloc); it now counts what the file inflates to and goes out of core / bounded, with the
+# same numbers as the plain text read in memory.
+set(extreme_gzip_bomb [=[
+{ echo gx,gy,gz; awk 'BEGIN { srand(5); for (i = 0; i < 1000; ++i) printf "%.4f,%.4f,%.4f\n", rand(), rand(), rand() }' > "$W/block"
+  for i in $(seq 1 340); do cat "$W/block"; done; } > "$W/log.txt"
+gzip -9 -c "$W/log.txt" > "$W/log.txt.gz"
+echo "$(wc -c < "$W/log.txt") bytes of text in $(wc -c < "$W/log.txt.gz") of gzip"
+run adev "$W/log.txt.gz" --rate 100 --stat oadev --memory 1MiB -o "$W/gz.txt"
+expect 0 "log.txt.gz needs more than --memory 1MiB in memory. computing exactly out of core"
+run adev "$W/log.txt" --rate 100 --stat oadev --memory 1GiB -o "$W/plain.txt"
+expect 0 ""
+diff <(tail -n +2 "$W/gz.txt" | grep -v "^# mode") <(tail -n +2 "$W/plain.txt" | grep -v "^# mode") > /dev/null ||
+  fail "out of core on the .gz differs from in memory on the text"
+run analyze "$W/log.txt.gz" --rate 100 --memory 1MiB -o "$W/report"
+expect 0 "log.txt.gz needs more than --memory 1MiB in memory. analysing it in bounded memory"
+echo "ok: the .gz was counted inflated, out of core and bounded, the same numbers"
+]=])
+add_test(NAME cli_extreme_gzip_bomb
+         COMMAND bash -c "${sigmatau_cli_shell_prologue}${extreme_gzip_bomb}" extreme_gzip_bomb
+                 $<TARGET_FILE:sigmatau_cli> ${extreme_dir}/gzip_bomb ${extreme_white})

@@ -61,6 +61,9 @@ inline constexpr std::int64_t kDefaultSegmentDivisor = 8;
 inline constexpr std::int64_t kDefaultSegmentSaturation =
     kDefaultSegmentDivisor * kMaxDefaultSegmentLength;
 
+/// Longest segment accepted [samples]: FFTW's transform length is an int.
+inline constexpr std::int64_t kMaxSegmentLength = 2147483647;
+
 /// Segment length used when WelchOptions::segment_length is 0: the largest power of two not
 /// above samples / kDefaultSegmentDivisor (so at least ~15 segments at 50 % overlap), clamped
 /// to [16, kMaxDefaultSegmentLength].
@@ -70,8 +73,12 @@ std::int64_t default_segment_length(std::int64_t samples);
 /// time (once one segment is complete). Owns its FFTW plan and buffers.
 class WelchAccumulator {
  public:
-  /// Throws Error on rate_hz <= 0, segment_length < 4 (after choosing the default), or overlap
-  /// outside [0, 1). segment_length 0 needs `expected_samples` to choose it.
+  /// Throws Error on a rate outside checked_rate_hz's range, segment_length < 4 (after
+  /// choosing the default) or above kMaxSegmentLength, or overlap outside [0, 1).
+  /// segment_length 0 needs `expected_samples` to choose it. The segment's buffers (about 36
+  /// bytes per sample of the segment: samples, window, FFT input and output, power sums) are
+  /// allocated once the first segment is complete, so a segment longer than the samples fed
+  /// costs only those samples.
   WelchAccumulator(double rate_hz, const WelchOptions& options, std::int64_t expected_samples = 0);
   ~WelchAccumulator();
   WelchAccumulator(WelchAccumulator&&) noexcept;
