@@ -173,6 +173,39 @@ TriadNoise uniform_triad(Sensor sensor, const NoiseTerms& terms) {
   return t;
 }
 
+void replace_with_typed_terms(std::vector<TriadNoise>& triads, Sensor sensor,
+                              const NoiseTerms& typed, const std::string& white_origin,
+                              const std::string& bias_origin) {
+  auto it = std::find_if(triads.begin(), triads.end(),
+                         [&](const TriadNoise& t) { return t.sensor == sensor; });
+  if (it == triads.end()) {
+    triads.push_back(uniform_triad(sensor, NoiseTerms{}));
+    it = triads.end() - 1;
+  }
+  TriadNoise& t = *it;
+  if (typed.white) {
+    const bool had = t.axes[0].white.has_value();
+    for (auto& a : t.axes) a.white = typed.white;
+    t.white_origin = white_origin + (had ? " (typed; replaces the source's)" : " (typed)");
+  }
+  if (typed.bias_instability || typed.rate_random_walk) {
+    bool had = false;
+    for (auto& a : t.axes) {
+      had = had || a.bias_instability || a.rate_random_walk || a.gauss_markov;
+      a.bias_instability = typed.bias_instability;
+      a.rate_random_walk = typed.rate_random_walk;
+      a.gauss_markov.reset();
+    }
+    // The fit's upper bounds stood in for terms it did not detect: the typed terms replace them.
+    t.bias_from_upper_bound = false;
+    t.bias_instability_is_bound = {};
+    t.rate_random_walk_is_bound = {};
+    t.no_bias_term_detected = false;
+    t.rate_random_walk_bound.reset();
+    t.bias_origin = bias_origin + (had ? " (typed; replaces the source's bias)" : " (typed)");
+  }
+}
+
 TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                                  DensityConvention convention) {
   const SensorSheet* section = sheet.sensor(sensor);

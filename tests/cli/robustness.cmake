@@ -52,7 +52,7 @@ sigmatau_robust_test(cli_robust_force_psd "${robust_prologue}${force_check}"
 sigmatau_robust_test(cli_robust_force_fit "${robust_prologue}${force_check}"
   file fit ${robust_log} --time-column t)
 sigmatau_robust_test(cli_robust_force_convert "${robust_prologue}${force_check}"
-  file convert --spec bosch_bmi088 --rate 200 --to kalibr)
+  file convert --spec safran_stim300 --rate 200 --to kalibr)
 sigmatau_robust_test(cli_robust_force_simulate "${robust_prologue}${force_check}"
   file simulate --model "N=0.15 deg/sqrt(h)" --rate 100 --duration "10 s")
 sigmatau_robust_test(cli_robust_force_analyze "${robust_prologue}${force_check}"
