@@ -122,6 +122,18 @@ TEST_CASE("VN-100 noise densities convert to the published SI numbers (THEORY.md
   SIGMATAU_CHECK_REL(typ(s, Sensor::accel, SpecField::noise_density).value_si, 1.372e-3, 1e-3);
 }
 
+TEST_CASE("the VN-100's accelerometer bias stability is a maximum, as its data sheet prints it") {
+  // Quoted "< 0.04 mg" from the v7.0 data sheet (specs/vectornav_vn100.yaml, source cr7): an
+  // upper bound, so a check compares with it as a guaranteed maximum, not a typical value.
+  const DataSheet s = load_data_sheet(kSpecsDir / "vectornav_vn100.yaml");
+  const SpecValue* b = s.accel->find(SpecField::bias_instability);
+  REQUIRE(b != nullptr);
+  CHECK_FALSE(b->typ.has_value());
+  REQUIRE(b->max.has_value());
+  CHECK_FALSE(b->limit_is_typical());
+  SIGMATAU_CHECK_REL(b->max->value_si, 0.04e-3 * 9.80665, kRoundOff);
+}
+
 TEST_CASE("a value with typ and max reports max as its limit") {
   const DataSheet s = load_data_sheet(test_data_dir() / "specs" / "good_minimal.yaml");
   const SpecValue* b = s.gyro->find(SpecField::bias_instability);
