@@ -267,7 +267,8 @@ TEST_CASE("VINS-Fusion and OpenVINS files are what OpenCV's FileStorage reads") 
   // Appended to an existing config the old values would stay: the header says to replace them.
   CHECK(vins.find("replace the values of acc_n, gyr_n, acc_w and gyr_w in your config") !=
         std::string::npos);
-  CHECK(vins.find("do not append") != std::string::npos);
+  CHECK(vins.find("do not append these lines to the config: of two equal keys OpenCV keeps the "
+                  "first") != std::string::npos);
 }
 
 TEST_CASE("PX4's prediction interval is the whole number of IMU intervals nearest EKF2_PREDICT_US") {

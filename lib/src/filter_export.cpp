@@ -78,7 +78,9 @@ std::string joined_keys(const std::vector<MissingFilterValue>& missing) {
   return keys;
 }
 
-/// The file's first lines: `format_line`, then (OpenCV files) nothing may precede it.
+/// A file's header: `format_line` (what the file is for), what makes the values untrustworthy
+/// (missing keys, a rejected fit, units), the source, the settings, the notes and where the bias
+/// came from.
 std::string header(const DiscreteNoise& n, const std::string& format_line, ExportFormat format) {
   std::ostringstream o;
   o << "# " << format_line << "\n";
@@ -207,9 +209,10 @@ std::string vins(const DiscreteNoise& n) {
   o << kOpenCvYamlLine;
   o << header(n,
               "VINS-Fusion / VINS-Mono IMU noise: replace the values of acc_n, gyr_n, acc_w and "
-              "gyr_w in your config yaml with these (do not append these lines: of two equal "
-              "keys OpenCV keeps the first, so the old values would stay)",
+              "gyr_w in your config yaml with these",
               ExportFormat::vins_fusion);
+  o << "# do not append these lines to the config: of two equal keys OpenCV keeps the first, so "
+       "the old values would stay in force\n";
   o << "# midpoint propagation: Var(dtheta) = 0.5 gyr_n^2 dt^2, Var(db) = gyr_w^2 dt^2 per IMU "
        "step dt = 1/f_s,\n"
     << "# so gyr_n = N sqrt(2 f_s) and gyr_w = K sqrt(f_s) (accelerometer likewise)\n";
