@@ -8,11 +8,7 @@
 # width, so that the plot area is not a strip. MIN_TEXTS: at least this many texts (the rows
 # drawn). Exits 77 (skipped) without Chromium, or when FILE is absent and SKIP_IF_ABSENT is set
 # (reference data not installed).
-find_program(CHROMIUM NAMES chromium chromium-browser)
-if(NOT CHROMIUM)
-  message("SKIPPED: chromium not installed (apt-get install chromium)")
-  cmake_language(EXIT 77)
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/chromium_probe.cmake)
 if(NOT EXISTS "${FILE}")
   if(SKIP_IF_ABSENT)
     message("SKIPPED: ${FILE} not found")
@@ -71,20 +67,9 @@ if (!svg) {
 document.body.setAttribute('data-chart', bad.length ? bad.slice(0, 12).join(' ; ') : 'ok');
 document.body.setAttribute('data-texts', String(count));
 </script>\n")
-set(profile "${dir}/chromium-chart-profile-${tag}")
-execute_process(
-  COMMAND ${CHROMIUM} --headless --no-sandbox --disable-gpu --disable-quic --no-first-run
-          --disable-background-networking --disable-component-update --disable-sync
-          --user-data-dir=${profile} --hide-scrollbars --window-size=${WIDTH},2600
-          --virtual-time-budget=3000 --dump-dom "file://${probe}"
-  RESULT_VARIABLE code OUTPUT_VARIABLE dom ERROR_VARIABLE log TIMEOUT 120)
-file(REMOVE_RECURSE "${profile}")
-file(REMOVE "${probe}")
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "chromium exited with ${code}:\n${log}")
-endif()
+chromium_dump("${probe}" ${WIDTH} "${dir}/chromium-chart-profile-${tag}" dom)
 if(NOT dom MATCHES "data-chart=\"([^\"]*)\"")
-  message(FATAL_ERROR "the chart probe did not run in Chromium:\n${log}")
+  message(FATAL_ERROR "the chart probe did not run in Chromium:\n${dom_log}")
 endif()
 set(chart "${CMAKE_MATCH_1}")
 if(NOT dom MATCHES "data-texts=\"([0-9]+)\"")
