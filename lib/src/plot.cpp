@@ -119,6 +119,7 @@ void run_gnuplot(const std::string& script_name, const std::string& assignments,
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw Error("cannot run gnuplot: " + std::string(std::strerror(spawned)));
+  const KillOnInterrupt child(pid);  // never writes into the scratch directory after a signal
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
