@@ -7,11 +7,13 @@
 // saved adev JSON: test_saved_adev; data sheets: test_spec.)
 #include <doctest/doctest.h>
 
+#include <regex>
 #include <string>
 
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -143,5 +145,42 @@ TEST_CASE("a calibrate result's biases, scale factors, intervals and matrix are 
     CHECK(message_of([&] {
             measured_parameters_from_json(with(bad.gyro), "cal.json");
           }).find(bad.message) != std::string::npos);
+  }
+}
+
+TEST_CASE("a value whose filter numbers overflow is refused, never written as inf or null") {
+  ConvertOptions options;
+  options.rate_hz = 200;
+  // The issue's fit value of 1e308: N^2 f_s overflows. Before, PX4's EKF2_GYR_NOISE read inf
+  // and the JSON's variances null.
+  const std::string huge_n = fit_with(R"j({"value":1e308,"ci_low":1e308,"ci_high":1e308})j");
+  CHECK(
+      message_of([&] { convert_fit(read_fit_for_filter(huge_n, "fit.json"), options, "fit.json"); })
+          .find("gyro white noise: N = 1e+308 rad/s/sqrt(Hz) gives a variance per sample that "
+                "is not finite at 200 Hz (inflation 1, from fit.json)") != std::string::npos);
+  // A bias term likewise, given directly.
+  NoiseTerms terms;
+  terms.white = 1e-3;
+  terms.rate_random_walk = 1e300;
+  const TriadNoise bias = uniform_triad(Sensor::accel, terms);
+  CHECK(message_of([&] {
+          convert_noise({bias}, options, "the test");
+        }).find("accel bias (rate_random_walk): its variance per step is not finite at 200 Hz") !=
+        std::string::npos);
+  // Large but finite all the way: every format is written, with no inf, nan or null in it.
+  const auto noise =
+      convert_fit(read_fit_for_filter(
+                      fit_with(R"j({"value":1e150,"ci_low":1e150,"ci_high":1e150})j"), "fit.json"),
+                  options, "fit.json");
+  for (const ExportFormat format :
+       {ExportFormat::kalibr, ExportFormat::openvins, ExportFormat::vins_fusion,
+        ExportFormat::gtsam, ExportFormat::px4, ExportFormat::json}) {
+    CAPTURE(to_string(format));
+    const std::string text = export_filter_config(noise, format);
+    // As a word of its own ("inflation", "information" are fine).
+    static const std::regex kNotANumber("(^|[^A-Za-z_])(inf|infinity|nan|null)([^A-Za-z_]|$)",
+                                        std::regex::icase);
+    std::smatch found;
+    CHECK_MESSAGE(!std::regex_search(text, found, kNotANumber), found.str());
   }
 }
