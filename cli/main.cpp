@@ -1,7 +1,6 @@
 // sigmatau: Allan-family deviations, noise terms, data-sheet checks and filter tuning for IMUs.
 // Exit codes: 0 ok, 1 a compliance check failed, 2 bad input or usage, 3 internal error.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
@@ -57,11 +56,15 @@ constexpr std::string_view kOutputOptions[] = {"--output", "--plot"};
 void note_inputs_of(const CLI::App& app) {
   for (const CLI::App* verb : app.get_subcommands()) {
     for (const CLI::Option* option : verb->get_options()) {
-      if (std::any_of(std::begin(kOutputOptions), std::end(kOutputOptions),
-                      [&](std::string_view output) { return option->check_name(std::string(output)); })) {
+      if (std::any_of(
+              std::begin(kOutputOptions), std::end(kOutputOptions),
+              [&](std::string_view output) { return option->check_name(std::string(output)); })) {
         continue;
       }
-      for (const std::string& value : option->results()) sigmatau::note_input(value);
+      for (const std::string& value : option->results()) {
+        // "-" is stdin, which may be a file (`adev - < log.csv -o log.csv`).
+        sigmatau::note_input(value == "-" ? std::string("/dev/stdin") : value);
+      }
     }
   }
 }

@@ -65,6 +65,9 @@ run adev in.csv --time-column t --format json -o soft.csv --force
 expect 2 "soft\.csv \(-> in\.csv\): it $refused"
 run psd in.csv --time-column t -o hard.csv --force
 expect 2 "hard\.csv: it $refused"
+# stdin redirected from the file.
+"$S" adev - --time-column t -o in.csv --force <in.csv >/dev/null 2>.stderr; rc=$?; err=$(cat .stderr)
+expect 2 "in\.csv: it $refused \(/dev/stdin\)"
 unchanged in.csv keep.csv
 # A directory that holds the input (the issue's `-o data`), with a notes file beside the log.
 mkdir data; cp keep.csv data/log.csv; echo "my notes" >data/notes.txt

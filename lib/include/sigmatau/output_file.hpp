@@ -124,7 +124,9 @@ class InterruptCleanup {
 /// Puts a child process (gnuplot writing into a scratch directory) on the interrupt clean-up
 /// table for as long as this object lives: remove_pending_temporaries() kills and reaps it first,
 /// so that it writes nothing after its directory was removed, and it does not outlive a run
-/// killed by SIGTERM or SIGHUP. Untracked silently when the table (8 children) is full.
+/// killed by SIGTERM or SIGHUP. Untracked silently when the table (8 children) is full. Destroy
+/// it before the child is reaped (wait with waitid(WNOWAIT) first): a reaped child's PID may be
+/// another process's by the time a signal comes.
 class KillOnInterrupt {
  public:
   explicit KillOnInterrupt(int pid);
