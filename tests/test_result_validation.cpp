@@ -30,16 +30,7 @@ std::string fit_with(const std::string& n, const std::string& extra = "") {
 constexpr const char* kGoodN =
     R"j({"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4,"unit":"rad/s/sqrt(Hz)"})j";
 
-/// The message of the Error `f` throws, or "" when it throws none.
-template <typename F>
-std::string message_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 }  // namespace
 
@@ -71,9 +62,9 @@ TEST_CASE("a fit result is read only when every number of its terms is right, by
     CAPTURE(bad.n);
     CAPTURE(bad.extra);
     const std::string text = fit_with(bad.n, bad.extra);
-    CHECK(message_of([&] { triads_from_fit_json(text, "fit.json"); }).find(bad.message) !=
+    CHECK(error_of([&] { triads_from_fit_json(text, "fit.json"); }).find(bad.message) !=
           std::string::npos);
-    CHECK(message_of([&] { measured_parameters_from_json(text, "fit.json"); }).find(bad.message) !=
+    CHECK(error_of([&] { measured_parameters_from_json(text, "fit.json"); }).find(bad.message) !=
           std::string::npos);
   }
   // A B term's tau_min_s (the filter's Gauss-Markov time) must be > 0.
@@ -81,7 +72,7 @@ TEST_CASE("a fit result is read only when every number of its terms is right, by
       R"j({"confidence":0.683,"channels":[{"name":"gx","quantity":"angular_rate",
     "parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},
                   "B":{"value":3e-6,"ci_low":2e-6,"ci_high":4e-6,"tau_min_s":-600}}}]})j";
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           triads_from_fit_json(tau_min, "fit.json");
         }).find("parameters.B.tau_min_s: expected a finite number > 0, got -600") !=
         std::string::npos);
@@ -90,23 +81,23 @@ TEST_CASE("a fit result is read only when every number of its terms is right, by
 TEST_CASE("a fit result's level and log rate are checked") {
   const std::string level = R"j({"confidence":5,"channels":[{"name":"gx","quantity":"angular_rate",
     "parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4}}}]})j";
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           triads_from_fit_json(level, "fit.json");
         }).find("fit.json: confidence: expected a number in (0, 1), got 5") != std::string::npos);
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           measured_parameters_from_json(level, "fit.json");
         }).find("fit.json: confidence: expected a number in (0, 1), got 5") != std::string::npos);
   const std::string rate = R"j({"input":{"rate_hz":-100},"channels":[{"name":"gx",
     "quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4}}}]})j";
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           triads_from_fit_json(rate, "fit.json");
         }).find("fit.json: input.rate_hz: expected a finite number > 0, got -100") !=
         std::string::npos);
   // A number beyond a double: "not valid JSON", an Error (exit 2), where it was exit 3.
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           triads_from_fit_json(fit_with(R"j({"value":1e999})j"), "fit.json");
         }).find("fit.json: not valid JSON") != std::string::npos);
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           measured_parameters_from_json(fit_with(R"j({"value":1e999})j"), "fit.json");
         }).find("fit.json: not valid JSON") != std::string::npos);
 }
@@ -142,7 +133,7 @@ TEST_CASE("a calibrate result's biases, scale factors, intervals and matrix are 
   };
   for (const auto& bad : kBad) {
     CAPTURE(bad.gyro);
-    CHECK(message_of([&] {
+    CHECK(error_of([&] {
             measured_parameters_from_json(with(bad.gyro), "cal.json");
           }).find(bad.message) != std::string::npos);
   }
@@ -155,7 +146,7 @@ TEST_CASE("a value whose filter numbers overflow is refused, never written as in
   // and the JSON's variances null.
   const std::string huge_n = fit_with(R"j({"value":1e308,"ci_low":1e308,"ci_high":1e308})j");
   CHECK(
-      message_of([&] { convert_fit(read_fit_for_filter(huge_n, "fit.json"), options, "fit.json"); })
+      error_of([&] { convert_fit(read_fit_for_filter(huge_n, "fit.json"), options, "fit.json"); })
           .find("gyro white noise: N = 1e+308 rad/s/sqrt(Hz) gives a variance per sample that "
                 "is not finite at 200 Hz (inflation 1, from fit.json)") != std::string::npos);
   // A bias term likewise, given directly.
@@ -163,7 +154,7 @@ TEST_CASE("a value whose filter numbers overflow is refused, never written as in
   terms.white = 1e-3;
   terms.rate_random_walk = 1e300;
   const TriadNoise bias = uniform_triad(Sensor::accel, terms);
-  CHECK(message_of([&] {
+  CHECK(error_of([&] {
           convert_noise({bias}, options, "the test");
         }).find("accel bias (rate_random_walk): its variance per step is not finite at 200 Hz") !=
         std::string::npos);
