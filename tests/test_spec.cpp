@@ -209,6 +209,24 @@ TEST_CASE("bad data sheets fail with the file, line, column, field, found and ex
     CHECK(e.message() == "gyro.noise_density: found a primary source without page or table, "
                          "expected page: N or table: NAME");
   }
+  SUBCASE("a value no sensor comes near (issue 28: 1e308 became inf and null in filter files)") {
+    const std::string sheet =
+        "schema: 1\nmanufacturer: Test\npart: T-1\ngrade: consumer\n"
+        "sources:\n  ds:\n    document: Test\n    kind: secondary\n"
+        "gyro:\n  noise_density:\n    typ: 1e308 deg/s/sqrt(Hz)\n"
+        "    source: ds\n";
+    try {
+      parse_data_sheet(sheet, "big.yaml");
+      FAIL("1e308 deg/s/sqrt(Hz) was accepted");
+    } catch (const ParseError& e) {
+      CHECK(e.line() == 11);
+      CHECK(e.column() == 10);
+      CHECK(e.message() ==
+            "gyro.noise_density.typ: found 1e308 deg/s/sqrt(Hz), expected a value "
+            "below 1e+100 rad/sqrt(s) (no sensor comes near it: a typo or a unit "
+            "slip?)");
+    }
+  }
   SUBCASE("negative magnitude") {
     const ParseError e = parse_error("negative_value.yaml");
     CHECK(e.line() == 12);

@@ -119,6 +119,16 @@ void run_gnuplot(const std::string& script_name, const std::string& assignments,
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw Error("cannot run gnuplot: " + std::string(std::strerror(spawned)));
+  {
+    // Killed on a signal, so that it writes nothing into the scratch directory after it was
+    // removed. Waited for without reaping: the table lets go of the PID while the child is a
+    // zombie, whose PID no other process can have yet.
+    const KillOnInterrupt child(pid);
+    siginfo_t info{};
+    while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) != 0 &&
+           errno == EINTR) {
+    }
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
