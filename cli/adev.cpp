@@ -608,7 +608,11 @@ void add_adev_command(CLI::App& app) {
   command->add_option("--taus", args->taus,
                       "averaging times: octave | decade | many[:P] | all | times (0.1,1,10 in s, or 100ms,2min)")
       ->capture_default_str();
-  command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
+  command->add_option("--ci", args->ci,
+                      "two-sided confidence level of the intervals; 0.683 (one sigma) by default, "
+                      "the level of the error bars Stable32 and NIST SP 1065 print, so the bounds "
+                      "compare with theirs (fit and calibrate default to 0.95: their intervals "
+                      "gate parts)")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | csv | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");

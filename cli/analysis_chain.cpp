@@ -155,7 +155,9 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
             return path;
           },
           "");
-  command.add_flag("--force", args.force, "replace an existing output directory");
+  command.add_flag("--force", args.force,
+                   "replace an earlier report in the output directory (never another directory, "
+                   "nor one holding an input)");
   command.add_option("--threads", args.threads, "worker threads (0: one per core)")->capture_default_str();
   command.add_flag("--dynamic", args.dynamic,
                    "also the dynamic Allan deviation (OADEV over sliding windows) of each channel");

@@ -297,7 +297,10 @@ void add_calibrate_command(CLI::App& app) {
                       "distinct orientations required (9 to 1000: fewer never determine the "
                       "accelerometer)")
       ->capture_default_str();
-  command->add_option("--ci", args->confidence, "two-sided confidence level of the intervals")
+  command->add_option("--ci", args->confidence,
+                      "two-sided confidence level of the intervals; 0.95 by default, as a "
+                      "calibration's uncertainties are usually stated (adev's error bars default "
+                      "to one sigma, 0.683)")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE instead of stdout");

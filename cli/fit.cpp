@@ -503,7 +503,11 @@ void add_fit_command(CLI::App& app) {
                                            "out for the BIC choice")
                              : std::string();
       });
-  command->add_option("--ci", args->ci, "two-sided confidence level of the intervals")
+  command->add_option("--ci", args->ci,
+                      "two-sided confidence level of the intervals, one-sided of a left-out term's "
+                      "bound; 0.95 by default, the level a data-sheet check or a non-detection "
+                      "limit is quoted at (adev and analyze default to 0.683, one sigma, as ADEV "
+                      "error bars are printed)")
       ->capture_default_str();
   command->add_option("--tau-min", args->tau_min_s,
                       "fit only taus >= this [s] (a sensor that filters its output departs from "

@@ -1,13 +1,14 @@
 // sigmatau: Allan-family deviations, noise terms, data-sheet checks and filter tuning for IMUs.
 // Exit codes: 0 ok, 1 a compliance check failed, 2 bad input or usage, 3 internal error.
 #include <CLI/CLI.hpp>
-
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sigmatau/error.hpp"
@@ -43,6 +44,31 @@ void clean_up_outputs_on_interrupt() {
 /// writer reports "cannot write PATH: File too large" (exit 2) and removes its temporary file,
 /// as for a full disk.
 void report_file_size_limit_as_error() { std::signal(SIGXFSZ, SIG_IGN); }
+
+/// The options that name what a verb writes; every other option's value and every positional
+/// argument that names an existing file or directory is something the verb reads.
+constexpr std::string_view kOutputOptions[] = {"--output", "--plot"};
+
+/// Records, before the chosen verb runs, every existing file or directory its command line names
+/// outside its output options (the log, a saved result, a data sheet, a truth file, a rosbag2
+/// folder) as an input, so that no output of the run replaces one or, for a report directory,
+/// holds one (note_input). Done here once for every verb; naming a file that is not read
+/// (never the case today) only makes its outputs' checks stricter.
+void note_inputs_of(const CLI::App& app) {
+  for (const CLI::App* verb : app.get_subcommands()) {
+    for (const CLI::Option* option : verb->get_options()) {
+      if (std::any_of(
+              std::begin(kOutputOptions), std::end(kOutputOptions),
+              [&](std::string_view output) { return option->check_name(std::string(output)); })) {
+        continue;
+      }
+      for (const std::string& value : option->results()) {
+        // "-" is stdin, which may be a file (`adev - < log.csv -o log.csv`).
+        sigmatau::note_input(value == "-" ? std::string("/dev/stdin") : value);
+      }
+    }
+  }
+}
 
 /// "sigmatau: error: MESSAGE (see `sigmatau VERB --help`)": a CLI11 parse error in the form of
 /// every other error, on one line. An ExtrasError's arguments are listed as typed; without a
@@ -94,6 +120,8 @@ int main(int argc, char** argv) {
   sigmatau::cli::add_convert_command(app);
   sigmatau::cli::add_calibrate_command(app);
   sigmatau::cli::add_fit_command(app);
+  // The root's parse-complete callback runs before the chosen verb's own callback.
+  app.parse_complete_callback([&app] { note_inputs_of(app); });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

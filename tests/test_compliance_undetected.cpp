@@ -144,7 +144,9 @@ TEST_CASE("terms a fit result gives only as an upper bound are read as not detec
   }
   SUBCASE("a bound that is not a number is an error naming the term") {
     CHECK_THROWS_WITH_AS(measured_parameters_from_json(n_only_fit(3.0e-6, "\"big\""), "fit.json"),
-                         doctest::Contains("fit.json: gx.K"), Error);
+                         doctest::Contains("fit.json: channels[0] (gx).parameters.K.upper_bound: "
+                                           "expected a finite number >= 0, got \"big\""),
+                         Error);
   }
 }
 

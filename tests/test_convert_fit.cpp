@@ -120,3 +120,43 @@ TEST_CASE("results that are not a fit are refused with the file named") {
       triads_from_fit_json(R"json({"channels":[{"name":"temp","parameters":{}}]})json", "c.json"),
       doctest::Contains("temp"), Error);
 }
+
+TEST_CASE("typed terms replace a source's for their sensor and add a sensor it lacks") {
+  // A gyro fit whose B is a bound on y and K a bound everywhere, and no accelerometer.
+  const char* fit = R"json({"channels":[
+    {"name":"gx","quantity":"angular_rate","parameters":{"N":{"value":1e-4,"ci_low":9e-5,"ci_high":1.1e-4},
+      "B":{"value":3e-6,"ci_low":2e-6,"ci_high":4e-6},"K":{"upper_bound":2e-7}}},
+    {"name":"gy","quantity":"angular_rate","parameters":{"N":{"value":2e-4,"ci_low":1.9e-4,"ci_high":2.1e-4},
+      "B":{"upper_bound":5e-6},"K":{"upper_bound":3e-7}}}]})json";
+  auto triads = triads_from_fit_json(fit, "fit.json");
+  REQUIRE(triads.size() == 1);
+  NoiseTerms gyro_k;
+  gyro_k.rate_random_walk = 4e-6;
+  replace_with_typed_terms(triads, Sensor::gyro, gyro_k, "", "rate random walk K = 4e-6");
+  NoiseTerms accel;
+  accel.white = 1.5e-3;
+  accel.rate_random_walk = 3e-4;
+  replace_with_typed_terms(triads, Sensor::accel, accel, "noise density typed", "K typed");
+  REQUIRE(triads.size() == 2);
+  const TriadNoise& g = triads[0];
+  for (const auto& a : g.axes) {
+    CHECK(*a.rate_random_walk == 4e-6);
+    CHECK_FALSE(a.bias_instability.has_value());  // the typed bias replaces the fit's B
+  }
+  CHECK(*g.axes[1].white == 2e-4);  // no white noise typed: the fit's stays
+  CHECK_FALSE(g.bias_instability_is_bound[1]);
+  CHECK_FALSE(g.rate_random_walk_bound.has_value());
+  CHECK(g.bias_origin == "rate random walk K = 4e-6 (typed; replaces the source's bias)");
+  const TriadNoise& a = triads[1];
+  CHECK(a.sensor == Sensor::accel);
+  CHECK(*a.axes[2].white == 1.5e-3);
+  CHECK(a.white_origin == "noise density typed (typed)");
+  // The file now has all four terms, and says no upper bound stands in for the gyro bias.
+  ConvertOptions o;
+  o.rate_hz = 100;
+  const DiscreteNoise noise = convert_noise(triads, o, "fit.json and command-line terms");
+  CHECK(missing_filter_keys(noise, ExportFormat::kalibr).empty());
+  const std::string kalibr = export_filter_config(noise, ExportFormat::kalibr);
+  CHECK(kalibr.find("not detected") == std::string::npos);
+  CHECK(kalibr.find("gyroscope_random_walk: 4.0e-06") != std::string::npos);
+}

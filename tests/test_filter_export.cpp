@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <sstream>
@@ -149,9 +150,9 @@ TEST_CASE("T9: PX4 defaults 0.015 rad/s and 1e-3 rad/s^2 are densities 1.5e-3 an
   const DiscreteNoise noise = convert_noise({uniform_triad(Sensor::gyro, g)}, o, "T9");
   const std::string text = export_filter_config(noise, ExportFormat::px4);
   std::smatch m;
-  REQUIRE(std::regex_search(text, m, std::regex(R"(EKF2_GYR_NOISE (\S+))")));
+  REQUIRE(std::regex_search(text, m, std::regex(R"(param set EKF2_GYR_NOISE (\S+))")));
   SIGMATAU_CHECK_REL(std::stod(m[1]), 0.015, kHandDigits);  // printed with 7 digits
-  REQUIRE(std::regex_search(text, m, std::regex(R"(EKF2_GYR_B_NOISE (\S+))")));
+  REQUIRE(std::regex_search(text, m, std::regex(R"(param set EKF2_GYR_B_NOISE (\S+))")));
   SIGMATAU_CHECK_REL(std::stod(m[1]), 1e-3, kHandDigits);
   CHECK(text.find("# EKF2_ACC_NOISE: not given") != std::string::npos);
 }
@@ -210,10 +211,110 @@ TEST_CASE("files a filter cannot load say what is missing") {
                                  "gyroscope_random_walk"});
   CHECK(missing_filter_keys(noise, ExportFormat::vins_fusion) ==
         std::vector<std::string>{"acc_n", "acc_w", "gyr_w"});
-  CHECK(missing_filter_keys(noise, ExportFormat::px4).empty());  // PX4 keeps its defaults
-  CHECK(missing_filter_keys(reference_noise(), ExportFormat::openvins).empty());
+  // PX4 would keep its defaults (a flight tune) and GTSAM an identity: a mixed set either way.
+  CHECK(missing_filter_keys(noise, ExportFormat::px4) ==
+        std::vector<std::string>{"EKF2_ACC_NOISE", "EKF2_ACC_B_NOISE", "EKF2_GYR_B_NOISE"});
+  CHECK(missing_filter_keys(noise, ExportFormat::gtsam) ==
+        std::vector<std::string>{"accelerometerCovariance", "biasAccCovariance",
+                                 "biasOmegaCovariance"});
+  CHECK(missing_filter_keys(noise, ExportFormat::json).empty());  // absent there, never zero
+  for (const ExportFormat f : {ExportFormat::kalibr, ExportFormat::openvins,
+                               ExportFormat::vins_fusion, ExportFormat::gtsam, ExportFormat::px4,
+                               ExportFormat::json}) {
+    CHECK(missing_filter_keys(reference_noise(), f).empty());
+  }
+  const auto missing = missing_filter_values(noise, ExportFormat::kalibr);
+  REQUIRE(missing.size() == 3);
+  CHECK((missing[0].sensor == Sensor::accel && !missing[0].bias));
+  CHECK((missing[2].sensor == Sensor::gyro && missing[2].bias));
+  CHECK(missing_values_text(missing) == "accelerometer white noise and bias, gyroscope bias");
   CHECK(export_filter_config(noise, ExportFormat::kalibr)
             .find("# gyroscope_random_walk: not given; Kalibr needs it") != std::string::npos);
+  // Each incomplete file says so in its header, with what its filter does about it.
+  const std::string vins = export_filter_config(noise, ExportFormat::vins_fusion);
+  CHECK(vins.find("# WARNING: incomplete: acc_n, acc_w, gyr_w not in the input; VINS-Fusion "
+                  "does not refuse the file: it reads 0") != std::string::npos);
+  CHECK(export_filter_config(noise, ExportFormat::px4)
+            .find("# WARNING: incomplete: EKF2_ACC_NOISE, EKF2_ACC_B_NOISE, EKF2_GYR_B_NOISE not "
+                  "in the input; PX4 keeps its own default") != std::string::npos);
+  CHECK(export_filter_config(reference_noise(), ExportFormat::kalibr).find("incomplete") ==
+        std::string::npos);
+}
+
+TEST_CASE("VINS-Fusion and OpenVINS files are what OpenCV's FileStorage reads") {
+  // cv::FileStorage (OpenCV 4.6, checked by hand) refuses a YAML file whose first line is not
+  // "%YAML:1.0" ("Input file is invalid"), and of two equal keys keeps the first; VINS-Fusion
+  // reads 0 for a key that is missing.
+  const DiscreteNoise noise = reference_noise();
+  for (const ExportFormat f : {ExportFormat::vins_fusion, ExportFormat::openvins}) {
+    const std::string text = export_filter_config(noise, f);
+    CHECK(text.rfind("%YAML:1.0\n", 0) == 0);
+    std::map<std::string, int> keys;  // top-level keys, each at most once
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+      const auto colon = line.find(':');
+      if (line.empty() || line[0] == '#' || line[0] == '%' || line[0] == ' ' ||
+          colon == std::string::npos) {
+        continue;
+      }
+      CHECK(++keys[line.substr(0, colon)] == 1);
+    }
+  }
+  const std::string vins = export_filter_config(noise, ExportFormat::vins_fusion);
+  for (const char* key : {"acc_n: ", "gyr_n: ", "acc_w: ", "gyr_w: "}) {
+    CHECK(vins.find(std::string("\n") + key) != std::string::npos);
+  }
+  // Appended to an existing config the old values would stay: the header says to replace them.
+  CHECK(vins.find("replace the values of acc_n, gyr_n, acc_w and gyr_w in your config") !=
+        std::string::npos);
+  CHECK(vins.find("do not append these lines to the config: of two equal keys OpenCV keeps the "
+                  "first") != std::string::npos);
+}
+
+TEST_CASE("PX4's prediction interval is the whole number of IMU intervals nearest EKF2_PREDICT_US") {
+  // ImuDownSampler::reset: max(roundf(EKF2_PREDICT_US / IMU interval), 1) intervals.
+  // Exact in binary up to the division's round-off: rtol 1e-12.
+  constexpr double kRoundOff = 1e-12;
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.008, 200), 0.010, kRoundOff);   // 1.6 -> 2
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.005, 100), 0.010, kRoundOff);   // 0.5 -> 1
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.0012, 1000), 0.001, kRoundOff);  // 1.2 -> 1
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.015, 200), 0.015, kRoundOff);   // whole: kept
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.0075, 200), 0.010, kRoundOff);  // 1.5 -> 2
+  SIGMATAU_CHECK_REL(px4_prediction_interval(0.001, 100), 0.010, kRoundOff);   // at least one
+  // PX4's documented range is 1000 to 20000 us, in whole microseconds (an int32 parameter).
+  CHECK_THROWS_AS(px4_prediction_interval(0.020001, 200), Error);
+  CHECK_THROWS_AS(px4_prediction_interval(0.000999, 200), Error);
+  CHECK_THROWS_AS(px4_prediction_interval(0.0080005, 200), Error);
+  CHECK_NOTHROW(px4_prediction_interval(0.020, 200));
+  // The values follow the interval used: at 200 Hz, 8000 us gives N / sqrt(0.010 s), 12 % below
+  // N / sqrt(0.008 s); at 100 Hz, 5000 us gives N / sqrt(0.010 s), 41 % below N / sqrt(0.005 s).
+  for (const auto& [rate, asked_s] : {std::pair{200.0, 0.008}, std::pair{100.0, 0.005}}) {
+    NoiseTerms g;
+    g.white = 2e-4;
+    ConvertOptions o;
+    o.rate_hz = rate;
+    ExportOptions e;
+    e.px4_predict_interval_s = asked_s;
+    const std::string text = export_filter_config(
+        convert_noise({uniform_triad(Sensor::gyro, g)}, o, "px4"), ExportFormat::px4, e);
+    std::smatch m;
+    REQUIRE(std::regex_search(text, m, std::regex(R"(param set EKF2_GYR_NOISE (\S+))")));
+    SIGMATAU_CHECK_REL(std::stod(m[1]), 2e-4 / std::sqrt(0.010), kHandDigits);
+    CHECK(text.find("dt = 0.01 s") != std::string::npos);
+  }
+  ExportOptions too_long;
+  too_long.px4_predict_interval_s = 0.025;
+  CHECK_THROWS_AS(export_filter_config(reference_noise(), ExportFormat::px4, too_long), Error);
+}
+
+TEST_CASE("the PX4 file compares its values with PX4's defaults and names the inflation factor") {
+  const std::string text = export_filter_config(reference_noise(), ExportFormat::px4);
+  // Defaults 0.015 rad/s and 0.001 rad/s^2 against 0.002 and 3e-5 (tests/data/exports/px4.txt).
+  CHECK(text.find("EKF2_GYR_NOISE 7.5x") != std::string::npos);
+  CHECK(text.find("EKF2_GYR_B_NOISE 33.3x") != std::string::npos);
+  CHECK(text.find("set high on purpose") != std::string::npos);
+  CHECK(text.find("times the inflation factor 1: raise the factor for flight") !=
+        std::string::npos);
 }
 
 TEST_CASE("a bias random walk made from a bias stability is named a rule of thumb in the file") {

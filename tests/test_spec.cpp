@@ -122,6 +122,18 @@ TEST_CASE("VN-100 noise densities convert to the published SI numbers (THEORY.md
   SIGMATAU_CHECK_REL(typ(s, Sensor::accel, SpecField::noise_density).value_si, 1.372e-3, 1e-3);
 }
 
+TEST_CASE("the VN-100's accelerometer bias stability is a maximum, as its data sheet prints it") {
+  // Quoted "< 0.04 mg" from the v7.0 data sheet (specs/vectornav_vn100.yaml, source cr7): an
+  // upper bound, so a check compares with it as a guaranteed maximum, not a typical value.
+  const DataSheet s = load_data_sheet(kSpecsDir / "vectornav_vn100.yaml");
+  const SpecValue* b = s.accel->find(SpecField::bias_instability);
+  REQUIRE(b != nullptr);
+  CHECK_FALSE(b->typ.has_value());
+  REQUIRE(b->max.has_value());
+  CHECK_FALSE(b->limit_is_typical());
+  SIGMATAU_CHECK_REL(b->max->value_si, 0.04e-3 * 9.80665, kRoundOff);
+}
+
 TEST_CASE("a value with typ and max reports max as its limit") {
   const DataSheet s = load_data_sheet(test_data_dir() / "specs" / "good_minimal.yaml");
   const SpecValue* b = s.gyro->find(SpecField::bias_instability);
@@ -196,6 +208,24 @@ TEST_CASE("bad data sheets fail with the file, line, column, field, found and ex
     CHECK(e.line() == 11);
     CHECK(e.message() == "gyro.noise_density: found a primary source without page or table, "
                          "expected page: N or table: NAME");
+  }
+  SUBCASE("a value no sensor comes near (issue 28: 1e308 became inf and null in filter files)") {
+    const std::string sheet =
+        "schema: 1\nmanufacturer: Test\npart: T-1\ngrade: consumer\n"
+        "sources:\n  ds:\n    document: Test\n    kind: secondary\n"
+        "gyro:\n  noise_density:\n    typ: 1e308 deg/s/sqrt(Hz)\n"
+        "    source: ds\n";
+    try {
+      parse_data_sheet(sheet, "big.yaml");
+      FAIL("1e308 deg/s/sqrt(Hz) was accepted");
+    } catch (const ParseError& e) {
+      CHECK(e.line() == 11);
+      CHECK(e.column() == 10);
+      CHECK(e.message() ==
+            "gyro.noise_density.typ: found 1e308 deg/s/sqrt(Hz), expected a value "
+            "below 1e+100 rad/sqrt(s) (no sensor comes near it: a typo or a unit "
+            "slip?)");
+    }
   }
   SUBCASE("negative magnitude") {
     const ParseError e = parse_error("negative_value.yaml");

@@ -387,18 +387,28 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
             {ExportFormat::gtsam, "gtsam_" + label + ".txt"},
             {ExportFormat::px4, "px4_ekf2_" + label + ".params"}};
         json entry = {{"rate_hz", rate}, {"explain", noise.explain}, {"files", json::array()}};
-        std::string incomplete;
+        // A file its filter would read with values missing (VINS-Fusion as 0, PX4 and GTSAM as
+        // their defaults) is not written: the warning says which and how to write it.
+        std::string not_written, lacking;
         for (const auto& [format, file] : kFiles) {
+          if (const auto missing = missing_filter_values(noise, format); !missing.empty()) {
+            not_written += (not_written.empty() ? "" : ", ") + file;
+            lacking = missing_values_text(missing);
+            entry["not_written"].push_back(file);
+            continue;
+          }
           const std::string text = export_filter_config(noise, format);
-          const std::vector<std::string> missing = missing_filter_keys(noise, format);
-          if (!missing.empty()) incomplete += (incomplete.empty() ? "" : ", ") + file;
           output.filter_files[file] = text;
           entry["files"].push_back(file);
           if (format == ExportFormat::json) entry["discrete"] = json::parse(text);
         }
-        if (!incomplete.empty()) {
-          warnings.push_back(incomplete + " lack terms the log did not give (a comment marks each); "
-                             "Kalibr, OpenVINS and VINS-Fusion need all four: add them before use");
+        if (!not_written.empty()) {
+          warnings.push_back(
+              "not written: " + not_written + ": their filters need the white noise and bias of "
+              "both sensors and the log gives no " + lacking + " (Kalibr and OpenVINS " +
+              "would stop, VINS-Fusion read 0, PX4 and GTSAM keep their defaults); filter_" +
+              label + ".json holds what the log gives, and sigmatau convert on this results.json "
+              "with the missing terms typed beside it writes the others");
         }
         results["filter"].push_back(entry);
       } catch (const Error& e) {

@@ -168,6 +168,39 @@ TriadNoise uniform_triad(Sensor sensor, const NoiseTerms& terms) {
   return t;
 }
 
+void replace_with_typed_terms(std::vector<TriadNoise>& triads, Sensor sensor,
+                              const NoiseTerms& typed, const std::string& white_origin,
+                              const std::string& bias_origin) {
+  auto it = std::find_if(triads.begin(), triads.end(),
+                         [&](const TriadNoise& t) { return t.sensor == sensor; });
+  if (it == triads.end()) {
+    triads.push_back(uniform_triad(sensor, NoiseTerms{}));
+    it = triads.end() - 1;
+  }
+  TriadNoise& t = *it;
+  if (typed.white) {
+    const bool had = t.axes[0].white.has_value();
+    for (auto& a : t.axes) a.white = typed.white;
+    t.white_origin = white_origin + (had ? " (typed; replaces the source's)" : " (typed)");
+  }
+  if (typed.bias_instability || typed.rate_random_walk) {
+    bool had = false;
+    for (auto& a : t.axes) {
+      had = had || a.bias_instability || a.rate_random_walk || a.gauss_markov;
+      a.bias_instability = typed.bias_instability;
+      a.rate_random_walk = typed.rate_random_walk;
+      a.gauss_markov.reset();
+    }
+    // The fit's upper bounds stood in for terms it did not detect: the typed terms replace them.
+    t.bias_from_upper_bound = false;
+    t.bias_instability_is_bound = {};
+    t.rate_random_walk_is_bound = {};
+    t.no_bias_term_detected = false;
+    t.rate_random_walk_bound.reset();
+    t.bias_origin = bias_origin + (had ? " (typed; replaces the source's bias)" : " (typed)");
+  }
+}
+
 TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
                                  DensityConvention convention) {
   const SensorSheet* section = sheet.sensor(sensor);
@@ -457,6 +490,34 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
   return o.str();
 }
 
+namespace {
+
+/// Throws Error when a number of `triad` a filter file would carry is not finite: a value so
+/// large (1e308) that its square at f_s overflows was written as "inf" (PX4) or null (JSON).
+void check_finite(const TriadDiscrete& triad, const ConvertOptions& options,
+                  const std::string& source) {
+  const auto finite = [](const auto& m) { return m.allFinite(); };
+  const std::string sensor(to_string(triad.sensor));
+  const std::string at = " at " + num(options.rate_hz) + " Hz (inflation " + num(options.inflate) +
+                         ", from " + source + ")";
+  if (triad.white && !(finite(triad.white->density) && finite(triad.white->variance_per_sample) &&
+                       finite(triad.white->sigma_per_sample) && finite(triad.white->q))) {
+    throw Error(sensor + " white noise: N = " + num(triad.white->density.maxCoeff()) + " " +
+                density_unit(triad.sensor) + " gives a variance per sample that is not finite" +
+                at + "; no filter can use it: check the value and its unit");
+  }
+  const auto& b = triad.bias;
+  if (b && !(finite(b->variance_per_step) && finite(b->sigma_per_step) &&
+             finite(b->random_walk_density) && finite(b->phi) && finite(b->tau_c_s) &&
+             finite(b->sigma) && finite(b->q))) {
+    throw Error(sensor + " bias (" + std::string(to_string(b->source)) +
+                "): its variance per step is not finite" + at +
+                "; no filter can use it: check the value and its unit");
+  }
+}
+
+}  // namespace
+
 DiscreteNoise convert_noise(const std::vector<TriadNoise>& triads, const ConvertOptions& options,
                             std::string source) {
   check_options(options);
@@ -467,6 +528,7 @@ DiscreteNoise convert_noise(const std::vector<TriadNoise>& triads, const Convert
     auto& slot = t.sensor == Sensor::gyro ? out.gyro : out.accel;
     if (slot) throw Error("two " + std::string(to_string(t.sensor)) + " triads to convert");
     slot = discretize(t, options);
+    check_finite(*slot, options, out.source);  // every exporter writes from these numbers
     out.explain += explain(t, *slot, options);
   }
   return out;

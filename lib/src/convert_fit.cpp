@@ -2,14 +2,14 @@
 // the analyze chain, with what every filter file written from the fit must say about it: a fit
 // rejected by its goodness of fit, implausible units, the method used, the level of the bounds,
 // terms left out (R, Q), a filter rate above the log's.
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
+#include "json_fields.hpp"
 #include "sigmatau/channel_names.hpp"
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
@@ -29,16 +29,6 @@ struct AxisFit {
   NoiseTerms upper_bounds;  // terms not in the model, as their upper bound
   std::optional<double> adev_minimum_tau_s;
 };
-
-std::optional<double> read(const json& parameters, const char* key, const char* field) {
-  if (!parameters.contains(key) || !parameters[key].is_object() ||
-      !parameters[key].contains(field)) {
-    return std::nullopt;
-  }
-  const json& v = parameters[key][field];
-  if (!v.is_number()) return std::nullopt;
-  return v.get<double>();
-}
 
 std::string text_of(const json& parent, const char* key) {
   return parent.contains(key) && parent[key].is_string() ? parent[key].get<std::string>() : "";
@@ -101,18 +91,24 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
   json doc;
   try {
     doc = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a parse error, or a number too large (1e999)
     throw Error(file + ": not valid JSON (" + e.what() + ")");
   }
   // An analyze results.json has its fit under "fit" (its top-level "channels" are the curves).
+  // Every number read is checked (json_fields.hpp): before, a value of the wrong type was taken
+  // as absent and a negative one used.
+  using detail::NumberRule;
+  const detail::JsonField top{file, ""};
   const json* channels = nullptr;
+  detail::JsonField channels_field = top.at("channels");
   double confidence = 0;
   if (doc.is_object() && doc.contains("fit") && doc["fit"].is_object() &&
       doc["fit"].contains("channels")) {
     channels = &doc["fit"]["channels"];
-    if (doc["fit"].contains("confidence") && doc["fit"]["confidence"].is_number()) {
-      confidence = doc["fit"]["confidence"].get<double>();
-    }
+    channels_field = top.at("fit").at("channels");
+    confidence = detail::optional_number(doc["fit"], "confidence", top.at("fit"),
+                                         NumberRule::confidence_level)
+                     .value_or(0);
   }
   if (!channels && doc.is_object() && doc.contains("channels") && doc["channels"].is_array()) {
     channels = &doc["channels"];
@@ -120,8 +116,9 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
   if (!channels || !channels->is_array()) {
     throw Error(file + ": not a sigmatau fit result (expected \"channels\" or \"fit\": {\"channels\"})");
   }
-  if (confidence == 0 && doc.contains("confidence") && doc["confidence"].is_number()) {
-    confidence = doc["confidence"].get<double>();
+  if (confidence == 0) {
+    confidence =
+        detail::optional_number(doc, "confidence", top, NumberRule::confidence_level).value_or(0);
   }
   FitForFilter out;
   std::array<std::array<std::optional<AxisFit>, 3>, 2> axes;  // [gyro, accel][x, y, z]
@@ -129,9 +126,20 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
   std::set<std::string> methods;
   bool slopes_also = false;
   std::vector<std::string> ramps, quantizations;
-  for (const auto& channel : *channels) {
-    const std::string name = channel.is_object() ? channel.value("name", "") : "";
-    const std::string quantity = channel.is_object() ? text_of(channel, "quantity") : "";
+  for (std::size_t index = 0; index < channels->size(); ++index) {
+    const json& channel = (*channels)[index];
+    const detail::JsonField here = channels_field.at(index);
+    if (!channel.is_object()) {
+      throw Error(here.message("expected an object, got " + detail::json_shown(channel)));
+    }
+    const std::string name = detail::optional_text(channel, "name", here).value_or("");
+    const detail::JsonField named = here.named(name);
+    const std::string quantity = detail::optional_text(channel, "quantity", named).value_or("");
+    detail::optional_text(channel, "method", named);
+    const std::optional<double> p_value =
+        detail::optional_number(channel, "p_value", named, NumberRule::probability, true);
+    const std::optional<double> misfit_tau_s =
+        detail::optional_number(channel, "misfit_tau_s", named, NumberRule::positive, true);
     const std::optional<ChannelRole> role = channel_role(name, quantity);
     if (!role) {
       throw Error(file + ": channel \"" + name +
@@ -140,35 +148,36 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
     }
     if (!channel.contains("parameters")) continue;
     const json& p = channel["parameters"];
+    const auto term = [&](const char* key) {
+      return detail::fit_term_fields(p, key, named.at("parameters"))
+          .value_or(detail::FitTermFields{});
+    };
+    const detail::FitTermFields n = term("N"), b = term("B"), k = term("K");
     AxisFit fit;
-    fit.kept.white = read(p, "N", "value");
-    fit.kept.bias_instability = read(p, "B", "value");
-    fit.kept.rate_random_walk = read(p, "K", "value");
-    fit.upper_bounds.white = read(p, "N", "upper_bound");
-    fit.upper_bounds.bias_instability = read(p, "B", "upper_bound");
-    fit.upper_bounds.rate_random_walk = read(p, "K", "upper_bound");
-    fit.adev_minimum_tau_s = read(p, "B", "tau_min_s");
+    fit.kept.white = n.value;
+    fit.kept.bias_instability = b.value;
+    fit.kept.rate_random_walk = k.value;
+    fit.upper_bounds.white = n.upper_bound;
+    fit.upper_bounds.bias_instability = b.upper_bound;
+    fit.upper_bounds.rate_random_walk = k.upper_bound;
+    fit.adev_minimum_tau_s = b.tau_min_s;
     axes[role->sensor == Sensor::gyro ? 0 : 1][static_cast<std::size_t>(role->axis)] = fit;
 
     if (const std::string method = text_of(channel, "method"); !method.empty()) {
       methods.insert(method);
     }
     slopes_also = slopes_also || channel.contains("slopes");
-    if (channel.contains("p_value") && channel["p_value"].is_number()) {
-      const double p_value = channel["p_value"].get<double>();
-      if (p_value < kMisfitPValue) {
-        std::string entry = name + " (p = " + fmt("%.2g", p_value);
-        if (channel.contains("misfit_tau_s") && channel["misfit_tau_s"].is_number()) {
-          entry += ", worst at tau = " +
-                   fmt("%.4g", channel["misfit_tau_s"].get<double>()) + " s";
-        }
+    if (p_value) {
+      if (*p_value < kMisfitPValue) {
+        std::string entry = name + " (p = " + fmt("%.2g", *p_value);
+        if (misfit_tau_s) entry += ", worst at tau = " + fmt("%.4g", *misfit_tau_s) + " s";
         std::string& list = rejected[misfit_advice(channel)];
         list += (list.empty() ? "" : ", ") + entry + ")";
       }
     }
     for (const auto& [key, values] :
          {std::pair<const char*, std::vector<std::string>*>{"R", &ramps}, {"Q", &quantizations}}) {
-      if (const auto v = read(p, key, "value")) {
+      if (const auto v = term(key).value) {
         values->push_back(name + " " + fmt("%.4g", *v) + " " + text_of(p[key], "unit"));
       }
     }
@@ -292,9 +301,9 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
                     "quantization term)",
                     quantizations);
 
-  if (doc.contains("input") && doc["input"].is_object() && doc["input"].contains("rate_hz") &&
-      doc["input"]["rate_hz"].is_number()) {
-    out.log_rate_hz = doc["input"]["rate_hz"].get<double>();
+  if (doc.contains("input") && doc["input"].is_object()) {
+    out.log_rate_hz =
+        detail::optional_number(doc["input"], "rate_hz", top.at("input"), NumberRule::positive);
   }
   return out;
 }

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -17,16 +19,26 @@
 namespace sigmatau {
 namespace {
 
-/// Documented PX4 parameter ranges (src/modules/ekf2/module.yaml, THEORY.md 5.5): values
-/// outside are written but flagged, since PX4 clamps or rejects them.
-struct Px4Range {
+/// Documented PX4 parameter ranges and defaults (src/modules/ekf2/module.yaml,
+/// params_gyro_bias.yaml, params_accel_bias.yaml; THEORY.md 5.5): values outside the range are
+/// written but flagged, since PX4 clamps or rejects them. The defaults are a conservative tune
+/// on purpose, robust to the IMU errors of a vehicle in flight rather than accurate (PX4-ECL
+/// pull request 36, "EKF Tuning Update"), so they sit well above a still sensor's own noise.
+struct Px4Param {
   const char* name;
   double min, max;
+  double default_value;
 };
-constexpr Px4Range kPx4GyrNoise{"EKF2_GYR_NOISE", 1e-4, 0.1};
-constexpr Px4Range kPx4AccNoise{"EKF2_ACC_NOISE", 0.01, 1.0};
-constexpr Px4Range kPx4GyrBNoise{"EKF2_GYR_B_NOISE", 0.0, 0.01};
-constexpr Px4Range kPx4AccBNoise{"EKF2_ACC_B_NOISE", 0.0, 0.01};
+constexpr Px4Param kPx4GyrNoise{"EKF2_GYR_NOISE", 1e-4, 0.1, 0.015};
+constexpr Px4Param kPx4AccNoise{"EKF2_ACC_NOISE", 0.01, 1.0, 0.35};
+constexpr Px4Param kPx4GyrBNoise{"EKF2_GYR_B_NOISE", 0.0, 0.01, 0.001};
+constexpr Px4Param kPx4AccBNoise{"EKF2_ACC_B_NOISE", 0.0, 0.01, 0.003};
+/// An interval ratio this close to n + 1/2 is a tie: PX4 rounds the ratio of EKF2_PREDICT_US to
+/// its measured (averaged) IMU interval, which a tie leaves to the last digits of that average.
+constexpr double kPx4TieTolerance = 1e-6;
+/// OpenCV's cv::FileStorage (VINS-Fusion, OpenVINS) refuses a YAML file whose first line is not
+/// this ("Input file is invalid", OpenCV 4.6).
+constexpr const char* kOpenCvYamlLine = "%YAML:1.0\n";
 
 /// %.7g, with a decimal point before any exponent: YAML 1.1 readers (PyYAML's safe_load in
 /// Kalibr) take "1e-05" for a string and only "1.0e-05" for a number.
@@ -60,10 +72,25 @@ std::vector<std::string> notes_of(const DiscreteNoise& n) {
   return notes;
 }
 
-std::string header(const DiscreteNoise& n, const std::string& format_line) {
+/// "accelerometer_noise_density, gyroscope_random_walk"
+std::string joined_keys(const std::vector<MissingFilterValue>& missing) {
+  std::string keys;
+  for (const auto& m : missing) keys += (keys.empty() ? "" : ", ") + m.key;
+  return keys;
+}
+
+/// A file's header: `format_line` (what the file is for), what makes the values untrustworthy
+/// (missing keys, a rejected fit, units), the source, the settings, the notes and where the bias
+/// came from.
+std::string header(const DiscreteNoise& n, const std::string& format_line, ExportFormat format) {
   std::ostringstream o;
   o << "# " << format_line << "\n";
-  // First, before any number: what makes the values untrustworthy (a rejected fit, units).
+  // First, before any number: what makes the values untrustworthy (a missing key, a rejected
+  // fit, units).
+  if (const auto missing = missing_filter_values(n, format); !missing.empty()) {
+    o << "# WARNING: incomplete: " << joined_keys(missing) << " not in the input; "
+      << missing_key_consequence(format) << ": add them before use\n";
+  }
   for (const auto& w : n.warnings) o << "# WARNING: " << w << "\n";
   o << "# written by sigmatau from " << (n.source.empty() ? "given noise terms" : n.source)
     << "\n";
@@ -127,9 +154,11 @@ std::string kalibr_like(const DiscreteNoise& n, bool openvins, const ExportOptio
   const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
   std::ostringstream o;
   const std::string indent = openvins ? "  " : "";
-  if (openvins) o << "%YAML:1.0\n";
-  o << header(n, openvins ? "OpenVINS kalibr_imu_chain.yaml (continuous-time densities)"
-                          : "Kalibr imu.yaml (continuous-time densities)");
+  if (openvins) o << kOpenCvYamlLine;
+  o << header(n,
+              openvins ? "OpenVINS kalibr_imu_chain.yaml (continuous-time densities)"
+                       : "Kalibr imu.yaml (continuous-time densities)",
+              openvins ? ExportFormat::openvins : ExportFormat::kalibr);
   o << notes;
   auto line = [&](const char* key, bool present, double v, std::string_view unit) {
     if (present) {
@@ -176,7 +205,15 @@ std::string vins(const DiscreteNoise& n) {
   const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
   const double fs = n.options.rate_hz;
   std::ostringstream o;
-  o << header(n, "VINS-Fusion / VINS-Mono IMU noise (merge into your config yaml)");
+  // VINS-Fusion reads its config with cv::FileStorage: the YAML line first, or OpenCV refuses
+  // the file; of two equal keys OpenCV keeps the first, so appended lines would change nothing.
+  o << kOpenCvYamlLine;
+  o << header(n,
+              "VINS-Fusion / VINS-Mono IMU noise: replace the values of acc_n, gyr_n, acc_w and "
+              "gyr_w in your config yaml with these",
+              ExportFormat::vins_fusion);
+  o << "# do not append these lines to the config: of two equal keys OpenCV keeps the first, so "
+       "the old values would stay in force\n";
   o << "# midpoint propagation: Var(dtheta) = 0.5 gyr_n^2 dt^2, Var(db) = gyr_w^2 dt^2 per IMU "
        "step dt = 1/f_s,\n"
     << "# so gyr_n = N sqrt(2 f_s) and gyr_w = K sqrt(f_s) (accelerometer likewise)\n";
@@ -185,7 +222,8 @@ std::string vins(const DiscreteNoise& n) {
     if (present) {
       o << key << ": " << num(v) << "  # [" << unit << "] " << what << "\n";
     } else {
-      o << "# " << key << ": not given; VINS needs it: add it before use\n";
+      o << "# " << key << ": not given; VINS-Fusion would read 0 (a singular IMU covariance): "
+        << "add it before use\n";
     }
   };
   line("acc_n", a.white, a.n * std::sqrt(2 * fs), "m/s^2", "accelerometer measurement noise");
@@ -198,8 +236,10 @@ std::string vins(const DiscreteNoise& n) {
 std::string gtsam(const DiscreteNoise& n) {
   std::ostringstream o;
   const double fs = n.options.rate_hz;
-  o << header(n, "GTSAM PreintegrationParams / PreintegrationCombinedParams (continuous-time "
-                 "covariances)");
+  o << header(n,
+              "GTSAM PreintegrationParams / PreintegrationCombinedParams (continuous-time "
+              "covariances)",
+              ExportFormat::gtsam);
   o << "# GTSAM reads no file: copy each matrix into its setter, e.g. "
        "params->setGyroscopeCovariance(...), setAccelerometerCovariance, setBiasOmegaCovariance, "
        "setBiasAccCovariance\n"
@@ -210,7 +250,7 @@ std::string gtsam(const DiscreteNoise& n) {
   auto matrix = [&](const char* key, const Eigen::Matrix3d* m, const char* unit,
                     const char* what) {
     if (!m) {
-      o << "# " << key << ": not given\n";
+      o << "# " << key << ": not given; GTSAM would keep its identity default\n";
       return;
     }
     o << key << ":  # [" << unit << "] " << what << "\n";
@@ -246,33 +286,70 @@ std::string gtsam(const DiscreteNoise& n) {
 }
 
 std::string px4(const DiscreteNoise& n, const ExportOptions& options) {
-  const double dt = options.px4_predict_interval_s;
-  if (!(dt > 0)) throw Error("PX4 prediction interval: expected a time > 0");
+  const double fs = n.options.rate_hz;
+  const double dt = px4_prediction_interval(options.px4_predict_interval_s, fs);
+  const double requested_us = std::round(options.px4_predict_interval_s * 1e6);
+  const double intervals = std::round(dt * fs);
   std::string notes;
   const Densities g = densities(n.gyro ? &*n.gyro : nullptr, notes, "gyroscope");
   const Densities a = densities(n.accel ? &*n.accel : nullptr, notes, "accelerometer");
   std::ostringstream o;
-  o << header(n, "PX4 EKF2 IMU noise parameters (nsh / startup script)");
-  o << "# EKF2 integrates the IMU to its prediction interval dt = " << num(dt)
-    << " s (EKF2_PREDICT_US = " << num(dt * 1e6) << " us)\n"
-    << "# and adds (dt x NOISE)^2 per step: NOISE = N / sqrt(dt), B_NOISE = K / sqrt(dt)\n";
+  o << header(n, "PX4 EKF2 IMU noise parameters (nsh / startup script)", ExportFormat::px4);
+  o << "# EKF2 predicts every whole number of IMU intervals nearest to EKF2_PREDICT_US, at least "
+       "one (ImuDownSampler): EKF2_PREDICT_US = "
+    << num(requested_us) << " us at " << num(fs) << " Hz gives " << num(intervals)
+    << (intervals == 1 ? " interval" : " intervals") << ", dt = " << num(dt) << " s\n"
+    << "# (the IMU rate is the rate EKF2 receives, IMU_INTEG_RATE, not the sensor's output "
+       "rate)\n";
+  const double ratio = options.px4_predict_interval_s * fs;
+  if (std::abs(ratio - std::floor(ratio) - 0.5) < kPx4TieTolerance) {
+    o << "# note: EKF2_PREDICT_US is halfway between " << num(std::floor(ratio)) << " and "
+      << num(std::floor(ratio) + 1)
+      << " IMU intervals: PX4's choice then depends on the IMU interval it measures; set it "
+         "to a whole number of intervals\n";
+  }
+  o << "# EKF2 adds (dt x NOISE)^2 per step: NOISE = N / sqrt(dt), B_NOISE = K / sqrt(dt)\n";
   o << notes;
-  auto line = [&](const Px4Range& range, bool present, double v, const char* unit) {
-    if (!present) {
-      o << "# " << range.name << ": not given\n";
-      return;
+  const double root = std::sqrt(dt);
+  struct Line {
+    const Px4Param& param;
+    bool present;
+    double value;
+    const char* unit;
+  };
+  const Line lines[] = {{kPx4GyrNoise, g.white, g.n / root, "rad/s"},
+                        {kPx4AccNoise, a.white, a.n / root, "m/s^2"},
+                        {kPx4GyrBNoise, g.bias, g.k / root, "rad/s^2"},
+                        {kPx4AccBNoise, a.bias, a.k / root, "m/s^3"}};
+  // PX4's defaults against these values: how far a bench measurement is from a flight tune.
+  std::string ratios;
+  for (const Line& l : lines) {
+    if (!l.present || !(l.value > 0)) continue;
+    char text[96];
+    std::snprintf(text, sizeof text, "%s %s %.3gx", ratios.empty() ? "" : ",", l.param.name,
+                  l.param.default_value / l.value);
+    ratios += text;
+  }
+  if (!ratios.empty()) {
+    o << "# PX4's defaults are this many times the values below:" << ratios
+      << ". They are set high on purpose, for the vibration and other errors of a vehicle in "
+         "flight that a still log does not show; these values are the sensor's own noise, "
+         "times the inflation factor "
+      << num(n.options.inflate)
+      << ": raise the factor for flight, or EKF2 will trust the IMU too much\n";
+  }
+  for (const Line& l : lines) {
+    if (!l.present) {
+      o << "# " << l.param.name << ": not given; PX4 would keep its default "
+        << num(l.param.default_value) << "\n";
+      continue;
     }
-    o << "param set " << range.name << " " << num(v) << "  # [" << unit << "]";
-    if (!(v >= range.min && v <= range.max)) {
-      o << " outside the documented range " << num(range.min) << " .. " << num(range.max);
+    o << "param set " << l.param.name << " " << num(l.value) << "  # [" << l.unit << "]";
+    if (!(l.value >= l.param.min && l.value <= l.param.max)) {
+      o << " outside the documented range " << num(l.param.min) << " .. " << num(l.param.max);
     }
     o << "\n";
-  };
-  const double root = std::sqrt(dt);
-  line(kPx4GyrNoise, g.white, g.n / root, "rad/s");
-  line(kPx4AccNoise, a.white, a.n / root, "m/s^2");
-  line(kPx4GyrBNoise, g.bias, g.k / root, "rad/s^2");
-  line(kPx4AccBNoise, a.bias, a.k / root, "m/s^3");
+  }
   return o.str();
 }
 
@@ -375,36 +452,98 @@ std::string_view to_string(ExportFormat format) {
   return "?";
 }
 
-std::vector<std::string> missing_filter_keys(const DiscreteNoise& noise, ExportFormat format) {
-  const auto has = [](const std::optional<TriadDiscrete>& t, bool white) {
-    return t && (white ? t->white.has_value() : t->bias.has_value());
-  };
-  const bool an = has(noise.accel, true), ak = has(noise.accel, false);
-  const bool gn = has(noise.gyro, true), gk = has(noise.gyro, false);
-  std::vector<std::string> missing;
-  const auto need = [&](bool present, const char* key) {
-    if (!present) missing.emplace_back(key);
-  };
+double px4_prediction_interval(double predict_interval_s, double imu_rate_hz) {
+  if (!(imu_rate_hz > 0) || !std::isfinite(imu_rate_hz)) {
+    throw Error("PX4 export: IMU rate must be > 0 Hz, found " + num(imu_rate_hz));
+  }
+  const double us = predict_interval_s * 1e6;
+  if (!(us >= kPx4PredictMinUs && us <= kPx4PredictMaxUs)) {
+    throw Error("PX4 prediction interval EKF2_PREDICT_US: found " + num(us) + " us, expected " +
+                num(kPx4PredictMinUs) + " to " + num(kPx4PredictMaxUs) +
+                " us (PX4's documented range)");
+  }
+  // A parameter of type int32: 1e-6 us of round-off from a unit conversion is not a fraction.
+  if (!(std::abs(us - std::round(us)) <= 1e-6 * us)) {
+    throw Error("PX4 prediction interval EKF2_PREDICT_US: found " + num(us) +
+                " us, expected a whole number of microseconds (an int32 parameter)");
+  }
+  const double imu_interval_s = 1.0 / imu_rate_hz;
+  // roundf rounds halves away from zero, as std::round does.
+  const double intervals = std::max(std::round(std::round(us) * 1e-6 / imu_interval_s), 1.0);
+  return intervals * imu_interval_s;
+}
+
+std::vector<MissingFilterValue> missing_filter_values(const DiscreteNoise& noise,
+                                                      ExportFormat format) {
+  // The format's key for (sensor, bias): accel N, accel bias, gyro N, gyro bias.
+  std::array<const char*, 4> keys{};
   switch (format) {
     case ExportFormat::kalibr:
     case ExportFormat::openvins:
-      need(an, "accelerometer_noise_density");
-      need(ak, "accelerometer_random_walk");
-      need(gn, "gyroscope_noise_density");
-      need(gk, "gyroscope_random_walk");
+      keys = {"accelerometer_noise_density", "accelerometer_random_walk",
+              "gyroscope_noise_density", "gyroscope_random_walk"};
       break;
     case ExportFormat::vins_fusion:
-      need(an, "acc_n");
-      need(gn, "gyr_n");
-      need(ak, "acc_w");
-      need(gk, "gyr_w");
+      keys = {"acc_n", "acc_w", "gyr_n", "gyr_w"};
       break;
     case ExportFormat::gtsam:
+      keys = {"accelerometerCovariance", "biasAccCovariance", "gyroscopeCovariance",
+              "biasOmegaCovariance"};
+      break;
     case ExportFormat::px4:
+      keys = {kPx4AccNoise.name, kPx4AccBNoise.name, kPx4GyrNoise.name, kPx4GyrBNoise.name};
+      break;
     case ExportFormat::json:
-      break;  // PX4 keeps its defaults; GTSAM and JSON are read by the user's own code
+      return {};  // a sensor not given is absent there, never zero
+  }
+  std::vector<MissingFilterValue> missing;
+  std::size_t i = 0;
+  for (const Sensor sensor : {Sensor::accel, Sensor::gyro}) {
+    const TriadDiscrete* t = noise.triad(sensor);
+    for (const bool bias : {false, true}) {
+      const bool present = t && (bias ? t->bias.has_value() : t->white.has_value());
+      if (!present) missing.push_back({sensor, bias, keys[i]});
+      ++i;
+    }
   }
   return missing;
+}
+
+std::vector<std::string> missing_filter_keys(const DiscreteNoise& noise, ExportFormat format) {
+  std::vector<std::string> keys;
+  for (const auto& m : missing_filter_values(noise, format)) keys.push_back(m.key);
+  return keys;
+}
+
+std::string missing_values_text(const std::vector<MissingFilterValue>& missing) {
+  std::string text;
+  for (const Sensor sensor : {Sensor::accel, Sensor::gyro}) {
+    bool white = false, bias = false;
+    for (const auto& m : missing) {
+      if (m.sensor == sensor) (m.bias ? bias : white) = true;
+    }
+    if (!white && !bias) continue;
+    text += std::string(text.empty() ? "" : ", ") +
+            (sensor == Sensor::gyro ? "gyroscope " : "accelerometer ") +
+            (white && bias ? "white noise and bias" : (white ? "white noise" : "bias"));
+  }
+  return text;
+}
+
+std::string_view missing_key_consequence(ExportFormat format) {
+  switch (format) {
+    case ExportFormat::kalibr: return "Kalibr stops on a missing key";
+    case ExportFormat::openvins: return "OpenVINS stops on a missing key";
+    case ExportFormat::vins_fusion:
+      return "VINS-Fusion does not refuse the file: it reads 0 for a missing key and its IMU "
+             "factor then inverts a singular covariance";
+    case ExportFormat::gtsam: return "GTSAM keeps an identity covariance where none is set";
+    case ExportFormat::px4:
+      return "PX4 keeps its own default for a parameter not set (a flight tune, far above a "
+             "sensor's noise), so the set would be mixed";
+    case ExportFormat::json: return "";
+  }
+  return "";
 }
 
 std::string export_filter_config(const DiscreteNoise& noise, ExportFormat format,

@@ -1,5 +1,6 @@
-// Atomic output: temp file in the target's directory + fsync + rename(2); devices, FIFOs and
-// open descriptors written straight into; symbolic links followed, never replaced.
+// Atomic output: temp file in the target's directory (locked while its writer lives) + fsync +
+// rename(2), which without --force never replaces; devices, FIFOs and open descriptors written
+// straight into; symbolic links followed, never replaced; inputs never written.
 #include "sigmatau/output_file.hpp"
 
 #include <fcntl.h>
@@ -7,7 +8,6 @@
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -17,9 +17,18 @@
 #include <string>
 #include <string_view>
 
+#include "output_internal.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
+
+using detail::describe;
+using detail::directory_of;
+using detail::resolve_target;
+using detail::Target;
+using detail::TargetKind;
+using detail::without_trailing_separator;
+
 namespace {
 
 std::string errno_text() { return std::strerror(errno); }
@@ -34,66 +43,8 @@ std::filesystem::path temporary_name(const std::filesystem::path& path) {
   return name;
 }
 
-// Temporary names of the open AtomicOutputFiles, readable from a signal handler: a slot is
-// claimed (free -> busy) with a compare-exchange, its name copied, then published (armed);
-// remove_pending_temporaries() only reads armed slots. Lock-free atomics are async-signal-safe.
-constexpr std::size_t kPendingSlots = 32;        // far more outputs than any verb has open at once
-constexpr std::size_t kPendingPathBytes = 4096;  // PATH_MAX on Linux, with its NUL
-enum SlotState : int { kFree = 0, kBusy = 1, kArmed = 2 };
-struct PendingSlot {
-  std::atomic<int> state{kFree};
-  std::array<char, kPendingPathBytes> path{};
-};
-std::array<PendingSlot, kPendingSlots> pending_slots;
-static_assert(std::atomic<int>::is_always_lock_free);
-
-/// Slot index holding `path`, or -1 when the name is too long or every slot is taken.
-int track_pending(const std::filesystem::path& path) {
-  const std::string& name = path.native();
-  if (name.size() >= kPendingPathBytes) return -1;
-  for (std::size_t i = 0; i < kPendingSlots; ++i) {
-    int expected = kFree;
-    if (!pending_slots[i].state.compare_exchange_strong(expected, kBusy)) continue;
-    std::memcpy(pending_slots[i].path.data(), name.c_str(), name.size() + 1);
-    pending_slots[i].state.store(kArmed, std::memory_order_release);
-    return static_cast<int>(i);
-  }
-  return -1;
-}
-
-void untrack_pending(int slot) {
-  if (slot >= 0) pending_slots[static_cast<std::size_t>(slot)].state.store(kFree);
-}
-
-// What an output path names, after following the symbolic links of its last component.
-enum class TargetKind {
-  absent,          // nothing there yet (or unreachable: the directory checks report why)
-  regular,         // a regular file: replaced atomically with --force
-  directory,       // refused
-  device_or_pipe,  // a character device or FIFO (or another process's descriptor): opened
-  descriptor,      // one of this process's open descriptors (/dev/stdout, /dev/fd/N): dup'ed
-  socket,          // refused: open(2) cannot write one
-  block_device,    // refused: a disk is never an output
-};
-
-struct Target {
-  std::filesystem::path path;  // the path with the links of its last component followed
-  TargetKind kind = TargetKind::absent;
-  int descriptor = -1;  // for TargetKind::descriptor
-};
-
 // Symbolic links followed before giving up (Linux's own limit, MAXSYMLINKS, is 40).
 constexpr int kMaxLinks = 40;
-
-std::filesystem::path directory_of(const std::filesystem::path& path) {
-  return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-}
-
-// "a/b/" names "a/b" (shell completion types directories with the slash).
-std::filesystem::path without_trailing_separator(std::filesystem::path path) {
-  if (!path.has_filename() && path.has_relative_path()) path = path.parent_path();
-  return path;
-}
 
 // Parses "<digits>" at `text`'s start; the number (or -1) and what follows.
 long leading_number(std::string_view& text) {
@@ -127,6 +78,51 @@ bool descriptor_entry(const std::filesystem::path& path, long& pid, int& descrip
   if (dir != "/fd") return false;
   descriptor = static_cast<int>(number);
   return true;
+}
+
+// The refusals every kind of output shares: a socket and a block device.
+void refuse_unwritable_kinds(const std::filesystem::path& requested, const Target& target) {
+  if (target.kind == TargetKind::socket) {
+    throw Error("cannot write " + describe(requested, target) +
+                ": it is a socket; expected a file, a device or a pipe");
+  }
+  if (target.kind == TargetKind::block_device) {
+    throw Error("cannot write " + describe(requested, target) +
+                ": it is a block device; expected a file, a character device or a pipe");
+  }
+}
+
+// Early checks of a target written straight into: the descriptor is open for writing, or the
+// device / FIFO is writable by this user. Opens nothing.
+void check_direct_target(const std::filesystem::path& requested, const Target& target) {
+  if (target.kind == TargetKind::descriptor) {
+    const int flags = ::fcntl(target.descriptor, F_GETFL);
+    if (flags < 0) {
+      throw Error("cannot write " + requested.string() + ": file descriptor " +
+                  std::to_string(target.descriptor) + " is not open");
+    }
+    if ((flags & O_ACCMODE) == O_RDONLY) {
+      throw Error("cannot write " + requested.string() + ": file descriptor " +
+                  std::to_string(target.descriptor) + " is open for reading only");
+    }
+    return;
+  }
+  if (::access(target.path.c_str(), W_OK) != 0) {
+    throw Error("cannot write " + describe(requested, target) + ": " + errno_text());
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+std::filesystem::path directory_of(const std::filesystem::path& path) {
+  return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+}
+
+std::filesystem::path without_trailing_separator(std::filesystem::path path) {
+  if (!path.has_filename() && path.has_relative_path()) path = path.parent_path();
+  return path;
 }
 
 Target resolve_target(const std::filesystem::path& requested) {
@@ -163,45 +159,11 @@ Target resolve_target(const std::filesystem::path& requested) {
   throw Error("cannot write " + requested.string() + ": Too many levels of symbolic links");
 }
 
-// "PATH" or, when links led elsewhere, "PATH (-> TARGET)", for messages.
 std::string describe(const std::filesystem::path& requested, const Target& target) {
   if (target.path == without_trailing_separator(requested)) return requested.string();
   return requested.string() + " (-> " + target.path.string() + ")";
 }
 
-// The refusals every kind of output shares: a socket and a block device.
-void refuse_unwritable_kinds(const std::filesystem::path& requested, const Target& target) {
-  if (target.kind == TargetKind::socket) {
-    throw Error("cannot write " + describe(requested, target) +
-                ": it is a socket; expected a file, a device or a pipe");
-  }
-  if (target.kind == TargetKind::block_device) {
-    throw Error("cannot write " + describe(requested, target) +
-                ": it is a block device; expected a file, a character device or a pipe");
-  }
-}
-
-// Early checks of a target written straight into: the descriptor is open for writing, or the
-// device / FIFO is writable by this user. Opens nothing.
-void check_direct_target(const std::filesystem::path& requested, const Target& target) {
-  if (target.kind == TargetKind::descriptor) {
-    const int flags = ::fcntl(target.descriptor, F_GETFL);
-    if (flags < 0) {
-      throw Error("cannot write " + requested.string() + ": file descriptor " +
-                  std::to_string(target.descriptor) + " is not open");
-    }
-    if ((flags & O_ACCMODE) == O_RDONLY) {
-      throw Error("cannot write " + requested.string() + ": file descriptor " +
-                  std::to_string(target.descriptor) + " is open for reading only");
-    }
-    return;
-  }
-  if (::access(target.path.c_str(), W_OK) != 0) {
-    throw Error("cannot write " + describe(requested, target) + ": " + errno_text());
-  }
-}
-
-// check_can_create_in naming `shown` (the path as the user gave it, with where its links led).
 void check_can_create_in(const std::filesystem::path& path, const std::string& shown) {
   std::error_code ec;
   std::filesystem::path directory = directory_of(without_trailing_separator(path));
@@ -219,26 +181,10 @@ void check_can_create_in(const std::filesystem::path& path, const std::string& s
   }
 }
 
-}  // namespace
-
-void remove_pending_temporaries() noexcept {
-  for (auto& slot : pending_slots) {
-    if (slot.state.load(std::memory_order_acquire) == kArmed) ::unlink(slot.path.data());
-  }
-  // Directories last, once their tracked files are gone (rmdir fails on a file or a directory
-  // that is not empty, and leaves it).
-  for (auto& slot : pending_slots) {
-    if (slot.state.load(std::memory_order_acquire) == kArmed) ::rmdir(slot.path.data());
-  }
-}
-
-InterruptCleanup::InterruptCleanup(const std::filesystem::path& path)
-    : slot_(track_pending(path)) {}
-
-InterruptCleanup::~InterruptCleanup() { untrack_pending(slot_); }
+}  // namespace detail
 
 void check_can_create_in(const std::filesystem::path& path) {
-  check_can_create_in(path, path.string());
+  detail::check_can_create_in(path, path.string());
 }
 
 namespace {
@@ -247,6 +193,7 @@ namespace {
 void check_can_write_target(const std::filesystem::path& path, const Target& target,
                             bool overwrite) {
   refuse_unwritable_kinds(path, target);
+  detail::refuse_input_target(path, target);  // before "use --force", which would not help
   switch (target.kind) {
     case TargetKind::descriptor:
     case TargetKind::device_or_pipe:
@@ -260,7 +207,7 @@ void check_can_write_target(const std::filesystem::path& path, const Target& tar
     default:
       break;
   }
-  check_can_create_in(target.path, describe(path, target));
+  detail::check_can_create_in(target.path, describe(path, target));
 }
 
 bool written_straight_into(TargetKind kind) {
@@ -275,23 +222,6 @@ void check_can_write(const std::filesystem::path& path, bool overwrite) {
 
 bool is_stream_output(const std::filesystem::path& path) {
   return written_straight_into(resolve_target(path).kind);
-}
-
-std::filesystem::path check_output_directory(const std::filesystem::path& dir, bool overwrite) {
-  const Target target = resolve_target(dir);
-  switch (target.kind) {
-    case TargetKind::absent:
-      break;
-    case TargetKind::directory:
-    case TargetKind::regular:  // replaced by the directory with --force, as before
-      if (!overwrite) throw Error(describe(dir, target) + " exists; use --force to replace it");
-      break;
-    default:
-      throw Error("cannot write " + describe(dir, target) +
-                  ": it is a device, pipe or socket; expected a directory name");
-  }
-  check_can_create_in(target.path, describe(dir, target));
-  return target.path;
 }
 
 AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)
@@ -312,19 +242,35 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path path, bool overwrite)
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec) throw Error("cannot create directory " + directory.string() + ": " + ec.message());
-  temporary_ = temporary_name(target_);
-  // Tracked before the file exists, so an interrupt never finds it created but unknown.
-  pending_slot_ = track_pending(temporary_);
-  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  // What a run killed outright (kill -9, a power cut) left beside this target goes; a live
+  // run's temporary file is locked and kept.
+  detail::remove_abandoned_leftovers(directory, target_.filename().native());
+  // A new name when the lock finds the file gone (taken for abandoned between its creation and
+  // the lock, by another run's tidying): at most this many tries.
+  constexpr int kTries = 4;
+  for (int attempt = 0; attempt < kTries && fd_ < 0; ++attempt) {
+    temporary_ = temporary_name(target_);
+    // Tracked before the file exists, so an interrupt never finds it created but unknown.
+    pending_slot_ = detail::track_pending_path(temporary_);
+    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+      const std::string reason = errno_text();
+      detail::untrack_pending_path(pending_slot_);
+      throw Error("cannot write " + path_.string() + ": " + reason);
+    }
+    if (detail::lock_as_live(fd_, temporary_)) break;
+    ::close(fd_);
+    fd_ = -1;
+    detail::untrack_pending_path(pending_slot_);
+    pending_slot_ = -1;
+  }
   if (fd_ < 0) {
-    const std::string reason = errno_text();
-    untrack_pending(pending_slot_);
-    throw Error("cannot write " + path_.string() + ": " + reason);
+    throw Error("cannot write " + path_.string() + ": its temporary file kept vanishing");
   }
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
-  untrack_pending(pending_slot_);
+  detail::untrack_pending_path(pending_slot_);
   if (committed_) return;
   if (fd_ >= 0) ::close(fd_);
   if (!temporary_.empty()) ::unlink(temporary_.c_str());
@@ -355,22 +301,30 @@ void AtomicOutputFile::commit() {
     return;
   }
   if (::fsync(fd_) != 0) throw Error("cannot flush " + path_.string() + ": " + errno_text());
-  const int fd = fd_;
-  fd_ = -1;
-  if (::close(fd) != 0) throw Error("cannot write " + path_.string() + ": " + errno_text());
-  // Re-check just before the rename so a file created meanwhile is not replaced silently.
-  std::error_code ec;
-  if (!overwrite_ && std::filesystem::exists(target_, ec)) {
-    throw Error(path_.string() + " exists; use --force to overwrite it");
-  }
-  if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
-    throw Error("cannot rename into " + path_.string() + ": " + errno_text());
+  // The target may have become an input (a link changed) since the constructor looked.
+  detail::refuse_input_target(path_, resolve_target(path_));
+  detail::hold_commit_for_tests(target_);
+  if (overwrite_) {
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
+      throw Error("cannot rename into " + path_.string() + ": " + errno_text());
+    }
+  } else {
+    // Claimed atomically: of two runs writing the same new name, one gets it, the other is told.
+    const int failure = detail::rename_without_replacing(temporary_, target_);
+    if (failure == EEXIST) throw Error(path_.string() + " exists; use --force to overwrite it");
+    if (failure != 0) {
+      throw Error("cannot rename into " + path_.string() + ": " + std::strerror(failure));
+    }
   }
   // Untracked at once: the temporary name is gone, and a later interrupt must not unlink a
   // file of that name that something else might create.
-  untrack_pending(pending_slot_);
+  detail::untrack_pending_path(pending_slot_);
   pending_slot_ = -1;
   committed_ = true;
+  // Closed after the rename: the lock marks the temporary name live until it is gone.
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) throw Error("cannot write " + path_.string() + ": " + errno_text());
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,

@@ -127,6 +127,16 @@ void run_gnuplot(const std::string& script_name, const std::string& assignments,
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw Error("cannot run gnuplot: " + std::string(std::strerror(spawned)));
+  {
+    // Killed on a signal, so that it writes nothing into the scratch directory after it was
+    // removed. Waited for without reaping: the table lets go of the PID while the child is a
+    // zombie, whose PID no other process can have yet.
+    const KillOnInterrupt child(pid);
+    siginfo_t info{};
+    while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) != 0 &&
+           errno == EINTR) {
+    }
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -228,9 +238,12 @@ void render_spectrum_plot(const SpectrumPlot& plot, const std::filesystem::path&
 
 std::pair<double, double> compliance_x_range(const CompliancePlot& plot) {
   constexpr double kMargin = 1.5;
+  // compliance.gp draws a bound as an arrow from the bound to bound / 1.8 (its `shaft`).
+  constexpr double kBoundArrowTip = 1 / 1.8;
   double low = 1, high = 1;  // the limit line is always in view
   for (const auto& r : plot.rows) {
-    for (const double v : {r.ratio, r.ratio_low, r.ratio_high}) {
+    const double tip = r.detected ? r.ratio_high : r.ratio_high * kBoundArrowTip;
+    for (const double v : {r.ratio, r.ratio_low, r.ratio_high, tip}) {
       if (!(v > 0) || !std::isfinite(v)) continue;
       low = std::min(low, v);
       high = std::max(high, v);
@@ -294,6 +307,47 @@ std::pair<double, double> decade_y_range(const SpectrumPlot& plot) {
   return to_decades(low, high);
 }
 
+namespace {
+
+/// Characters in a UTF-8 string (code points; every one counted as one character's width).
+std::size_t utf8_length(const std::string& text) {
+  return static_cast<std::size_t>(std::count_if(
+      text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+/// `text` broken between words into lines of at most `width` characters (a longer word stays
+/// whole on its line).
+std::vector<std::string> wrap_words(const std::string& text, std::size_t width) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find(' ', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(begin, end - begin);
+    if (!line.empty() && utf8_length(line) + 1 + utf8_length(word) > width) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    begin = end + 1;
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+/// Characters per caption line of the compliance chart: compliance.gp gives the plot area at
+/// least plot_chars (60) characters' width, and the caption is centred under it.
+constexpr std::size_t kCaptionLineChars = 60;
+/// Caption lines compliance.gp takes (caption1..3).
+constexpr std::size_t kCaptionLines = 3;
+/// Decades of the x axis up to which its 2 and 5 steps are labelled too: beyond, they crowd
+/// (a 2-5-10 step is 0.3-0.4 decade; at 3 decades on the 60-character plot area that is about
+/// 7 characters, the width of a label such as "0.002").
+constexpr double kStepDecades = 3;
+
+}  // namespace
+
 void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::path& output,
                             bool overwrite) {
   const PlotFormat format = plot_format_for(output);
@@ -323,12 +377,30 @@ void render_compliance_plot(const CompliancePlot& plot, const std::filesystem::p
   const std::string caption =
       plot.caption.empty() ? "bar: confidence interval" : plot.caption;
   const auto x_range = compliance_x_range(plot);
+  // The template lays the chart out from the longest label (its width in characters) and
+  // centres the caption, wrapped, under a plot area at least kCaptionLineChars wide.
+  std::size_t label_chars = 0;
+  for (const auto& r : plot.rows) label_chars = std::max(label_chars, utf8_length(r.label));
+  std::vector<std::string> caption_lines = wrap_words(caption, kCaptionLineChars);
+  if (caption_lines.size() > kCaptionLines) {  // the rest on the last line, which may be long
+    for (std::size_t i = kCaptionLines; i < caption_lines.size(); ++i) {
+      caption_lines[kCaptionLines - 1] += " " + caption_lines[i];
+    }
+    caption_lines.resize(kCaptionLines);
+  }
+  std::string caption_assignments = "; ncaption=" + std::to_string(caption_lines.size());
+  for (std::size_t i = 0; i < kCaptionLines; ++i) {
+    caption_assignments += "; caption" + std::to_string(i + 1) + "=" +
+                           gnuplot_string(i < caption_lines.size() ? caption_lines[i] : "");
+  }
+  const bool label_steps = std::log10(x_range.second / x_range.first) <= kStepDecades;
   const std::string assignments =
       "datafile=" + gnuplot_string(data.string()) + "; outfile=" + gnuplot_string(rendered.string()) +
       "; term=" + gnuplot_string(terminal_for(format)) + "; title_text=" + gnuplot_string(plot.title) +
-      "; xlabel_text=" + gnuplot_string(caption) + "; nundetected=" + std::to_string(undetected) +
+      caption_assignments + "; nundetected=" + std::to_string(undetected) +
       "; nrows=" + std::to_string(plot.rows.size()) + "; xmin=" + gnuplot_number(x_range.first) +
-      "; xmax=" + gnuplot_number(x_range.second);
+      "; xmax=" + gnuplot_number(x_range.second) + "; label_chars=" + std::to_string(label_chars) +
+      "; label_steps=" + (label_steps ? "1" : "0");
   run_gnuplot("compliance.gp", assignments, rendered, scratch);
   move_into_place(rendered, output, overwrite);
 }

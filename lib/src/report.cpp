@@ -534,41 +534,7 @@ ReportFiles build_report(const std::string& results_json, const ReportOptions& o
 
 void write_output_directory(const std::filesystem::path& requested, const ReportFiles& files,
                             bool overwrite) {
-  // A trailing '/' dropped, a link followed (never replaced), a device or pipe refused even with
-  // --force.
-  const std::filesystem::path dir = check_output_directory(requested, overwrite);
-  std::error_code ec;
-  const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
-  std::filesystem::create_directories(parent, ec);
-  if (ec) throw Error("cannot create directory " + parent.string() + ": " + ec.message());
-  std::string name = (parent / (dir.filename().string() + ".partial-XXXXXX")).string();
-  if (!::mkdtemp(name.data())) throw Error("cannot create a directory next to " + dir.string());
-  const std::filesystem::path staging = name;
-  try {
-    for (const auto& [file, content] : files.files) {
-      write_file_atomically(staging / file, content, false);
-    }
-    std::filesystem::permissions(staging, std::filesystem::perms::owner_all |
-                                              std::filesystem::perms::group_read |
-                                              std::filesystem::perms::group_exec |
-                                              std::filesystem::perms::others_read |
-                                              std::filesystem::perms::others_exec);
-    if (std::filesystem::exists(dir, ec)) {
-      // Replace: move the old one aside first, so a failure leaves either the old or the new.
-      const std::filesystem::path old = std::filesystem::path(name + ".old");
-      std::filesystem::rename(dir, old);
-      std::filesystem::rename(staging, dir);
-      std::filesystem::remove_all(old, ec);
-    } else {
-      std::filesystem::rename(staging, dir);
-    }
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::filesystem::remove_all(staging, ec);
-    throw Error("cannot write " + dir.string() + ": " + e.what());
-  } catch (...) {
-    std::filesystem::remove_all(staging, ec);
-    throw;
-  }
+  write_directory_atomically(requested, files.files, overwrite);
 }
 
 }  // namespace sigmatau

@@ -1,11 +1,11 @@
 // A saved `sigmatau adev --format json` result read back for `fit` (saved_adev.hpp).
 #include "sigmatau/saved_adev.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
 #include <limits>
+#include <nlohmann/json.hpp>
 
+#include "json_fields.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/units.hpp"
 
@@ -20,48 +20,62 @@ bool looks_like_json(std::string_view text) {
 }
 
 SavedAdev read_adev_json(std::string_view text, const std::string& file) {
+  using detail::NumberRule;
   using nlohmann::json;
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a parse error, or a number too large (1e999)
     throw Error(file + ": not valid JSON (" + e.what() + ")");
   }
-  const auto need = [&](const json& j, const char* key, const std::string& where) -> const json& {
+  const detail::JsonField top{file, ""};
+  const auto need = [&](const json& j, const char* key,
+                        const detail::JsonField& where) -> const json& {
     if (!j.is_object() || !j.contains(key)) {
       throw Error(file + ": not a saved `sigmatau adev --format json` result: missing \"" +
-                  std::string(where) + key + "\"");
+                  where.at(key).path + "\"");
     }
     return j[key];
   };
-  const json& input = need(doc, "input", "");
-  const json& results = need(doc, "results", "");
-  const json& rate = need(input, "rate_hz", "input.");
-  const json& samples = need(input, "samples", "input.");
-  if (!rate.is_number() || !(rate.get<double>() > 0) || !samples.is_number_integer() ||
-      !results.is_array()) {
-    throw Error(file + ": input.rate_hz must be a number > 0, input.samples an integer and "
-                "results an array");
+  const json& input = need(doc, "input", top);
+  const json& results = need(doc, "results", top);
+  need(input, "rate_hz", top.at("input"));
+  need(input, "samples", top.at("input"));
+  const double rate_hz =
+      detail::required_number(input, "rate_hz", top.at("input"), NumberRule::positive);
+  // A series of fewer than 2 samples has no deviation at all.
+  constexpr std::int64_t kFewestSamples = 2;
+  const std::int64_t samples =
+      *detail::optional_integer(input, "samples", top.at("input"), kFewestSamples,
+                                std::numeric_limits<std::int64_t>::max() - 1);
+  if (!results.is_array()) {
+    throw Error(top.at("results").message("expected an array, got " + detail::json_shown(results)));
   }
-  const std::string kind = input.value("kind", "rate");
-  const DataKind data_kind = parse_data_kind(kind);
+  const std::string kind = detail::optional_text(input, "kind", top.at("input")).value_or("rate");
+  DataKind data_kind = DataKind::rate;
+  try {
+    data_kind = parse_data_kind(kind);
+  } catch (const Error& e) {
+    throw Error(top.at("input").at("kind").message(e.what()));
+  }
   CurveSource source;
-  source.tau0_s = 1.0 / rate.get<double>();
-  source.n_phase_points = samples.get<std::int64_t>() + (data_kind == DataKind::phase ? 0 : 1);
+  source.tau0_s = 1.0 / rate_hz;
+  source.n_phase_points = samples + (data_kind == DataKind::phase ? 0 : 1);
 
   SavedAdev out;
-  out.rate_hz = rate.get<double>();
+  out.rate_hz = rate_hz;
   for (std::size_t r = 0; r < results.size(); ++r) {
     const json& res = results[r];
-    const std::string where = "results[" + std::to_string(r) + "].";
-    if (need(res, "statistic", where) != "oadev") continue;
+    const detail::JsonField where = top.at("results").at(r);
+    need(res, "statistic", where);
+    const std::optional<std::string> statistic = detail::optional_text(res, "statistic", where);
+    if (*statistic != "oadev") continue;
     SavedCurve saved;
-    const json& channel = need(res, "channel", where);
-    if (!channel.is_string()) throw Error(file + ": " + where + "channel must be a string");
-    saved.channel = channel.get<std::string>();
+    need(res, "channel", where);
+    saved.channel = *detail::optional_text(res, "channel", where);
     saved.source = source;
     double to_si = 1;
-    const std::string unit = res.value("unit", "");
+    const std::string unit = detail::optional_text(res, "unit", where).value_or("");
     if (!unit.empty()) {
       const Unit u = parse_unit(unit);
       to_si = u.factor;
@@ -69,27 +83,36 @@ SavedAdev read_adev_json(std::string_view text, const std::string& file) {
       if (u.dimension == dim::acceleration) saved.sensor = Sensor::accel;
     }
     saved.curve.statistic = Statistic::oadev;
-    saved.curve.confidence_level = res.value("confidence", 0.683);
+    saved.curve.confidence_level =
+        detail::optional_number(res, "confidence", where, NumberRule::confidence_level)
+            .value_or(0.683);
     const json& pts = need(res, "points", where);
-    if (!pts.is_array()) throw Error(file + ": " + where + "points must be an array");
+    if (!pts.is_array()) {
+      throw Error(where.at("points").message("expected an array, got " + detail::json_shown(pts)));
+    }
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const std::string pw = where + "points[" + std::to_string(i) + "].";
+      const detail::JsonField pw = where.at("points").at(i);
       const json& p = pts[i];
-      const json& tau = need(p, "tau", pw);
-      const json& m = need(p, "m", pw);
-      const json& dev = need(p, "dev", pw);
-      if (!tau.is_number() || !m.is_number_integer()) {
-        throw Error(file + ": " + pw + "tau and m must be numbers");
-      }
+      need(p, "tau", pw);
+      need(p, "m", pw);
+      need(p, "dev", pw);
       CurvePoint cp;
-      cp.value.tau_s = tau.get<double>();
-      cp.value.m = m.get<std::int64_t>();
-      cp.value.n_terms = p.value("n", std::int64_t{0});
-      cp.value.dev = dev.is_number() ? dev.get<double>() * to_si
-                                     : std::numeric_limits<double>::quiet_NaN();
-      cp.confidence.noise.alpha = p.value("alpha", 0);
-      const json edf = p.value("edf", json());
-      cp.confidence.edf = edf.is_number() ? edf.get<double>() : std::numeric_limits<double>::quiet_NaN();
+      cp.value.tau_s = detail::required_number(p, "tau", pw, NumberRule::positive);
+      cp.value.m = *detail::optional_integer(p, "m", pw, 1, samples);
+      cp.value.n_terms = detail::optional_integer(p, "n", pw, 0, samples).value_or(0);
+      // null: adev could not compute the deviation at this tau (too few terms); kept as NaN.
+      constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+      cp.value.dev = detail::optional_number(p, "dev", pw, NumberRule::non_negative, true)
+                         .value_or(kUndefined) *
+                     to_si;
+      for (const char* bound : {"ci_low", "ci_high"}) {
+        detail::optional_number(p, bound, pw, NumberRule::non_negative, true);
+      }
+      // The noise type's exponent, an integer in [-2, 2] (confidence.hpp).
+      cp.confidence.noise.alpha =
+          static_cast<int>(detail::optional_integer(p, "alpha", pw, -2, 2).value_or(0));
+      cp.confidence.edf =
+          detail::optional_number(p, "edf", pw, NumberRule::positive, true).value_or(kUndefined);
       saved.curve.points.push_back(cp);
     }
     out.curves.push_back(std::move(saved));

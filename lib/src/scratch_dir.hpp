@@ -8,7 +8,6 @@
 #include <memory>
 #include <string>
 #include <system_error>
-#include <vector>
 
 #include "sigmatau/error.hpp"
 #include "sigmatau/output_file.hpp"
@@ -17,8 +16,8 @@ namespace sigmatau::detail {
 
 /// A private directory "<prefix>XXXXXX" in the temporary directory ($TMPDIR, else /tmp),
 /// removed with everything in it when this object goes, whatever the exception that unwinds it.
-/// The directory and every file named through file() are also on the interrupt clean-up table
-/// (InterruptCleanup), so a run interrupted by a signal leaves nothing behind.
+/// The directory is also on the interrupt clean-up table (InterruptCleanup), which removes it with
+/// everything in it, so a run interrupted by a signal leaves nothing behind.
 class ScratchDir {
  public:
   /// Throws Error when the directory cannot be created (a $TMPDIR that is not a directory, a
@@ -32,7 +31,7 @@ class ScratchDir {
       throw Error("cannot create a temporary directory for plots in " + base.string());
     }
     path_ = pattern;
-    tracked_.push_back(std::make_unique<InterruptCleanup>(path_));
+    tracked_ = std::make_unique<InterruptCleanup>(path_);
   }
   ~ScratchDir() {
     std::error_code ec;
@@ -44,17 +43,12 @@ class ScratchDir {
   /// The directory.
   const std::filesystem::path& path() const { return path_; }
 
-  /// The path of a file named `name` in the directory, tracked for an interrupt (tracked
-  /// before anything creates it).
-  std::filesystem::path file(const std::string& name) {
-    auto path = path_ / name;
-    tracked_.push_back(std::make_unique<InterruptCleanup>(path));
-    return path;
-  }
+  /// The path of a file named `name` in the directory (removed with it, also on an interrupt).
+  std::filesystem::path file(const std::string& name) const { return path_ / name; }
 
  private:
   std::filesystem::path path_;
-  std::vector<std::unique_ptr<InterruptCleanup>> tracked_;
+  std::unique_ptr<InterruptCleanup> tracked_;
 };
 
 }  // namespace sigmatau::detail

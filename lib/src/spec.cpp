@@ -8,6 +8,7 @@
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -85,6 +86,12 @@ constexpr std::array<SpecFieldInfo, 16> kAccelFields{{
     {SpecField::output_data_rate, "output_data_rate", "output data rate", dim::frequency, true},
     {SpecField::bandwidth, "bandwidth", "bandwidth", dim::frequency, true},
 }};
+
+/// The largest magnitude a printed value may have in SI. No sensor quantity comes near it (a
+/// full scale of 1e5 deg/s is 2e3 rad/s, an output rate of 1e6 Hz), while the conversions square
+/// values and multiply them by rates and times: a 1e308 typed by mistake became inf and null in
+/// the filter files. A value above it is a typo or a unit slip.
+constexpr double kLargestValueSi = 1e100;
 
 constexpr std::array<std::string_view, 4> kGrades{"consumer", "industrial", "tactical",
                                                   "navigation"};
@@ -204,6 +211,14 @@ class Reader {
     }
     if (!std::isfinite(v.value_si)) {
       fail_at(v.line, v.column, field + ": found " + v.text + ", expected a finite value");
+    }
+    if (!(v.value_si <= kLargestValueSi)) {
+      char limit[32];
+      std::snprintf(limit, sizeof limit, "%g", kLargestValueSi);
+      fail_at(v.line, v.column,
+              field + ": found " + v.text + ", expected a value below " + limit + " " +
+                  si_unit_string(info.dimension) +
+                  " (no sensor comes near it: a typo or a unit slip?)");
     }
     return v;
   }

@@ -8,11 +8,23 @@ sigmatau_cli_test(NAME cli_analyze_example EXIT 0
   STDOUT "\\| gx \\|.*deg/sqrt\\(h\\).*wrote .*example"
   ARGS analyze ${example} --time-column t --gyro-unit deg/s --dynamic --rate-out 200
        --spec adi_adis16465 -o ${analyze_dir}/example --force)
+# The example is gyro only: the filter files whose filters need the accelerometer too are not
+# written (Kalibr would stop, VINS-Fusion read 0, PX4 and GTSAM keep their defaults), and the
+# warning says so and how to write them; the JSON holds the gyro's values.
 add_test(NAME cli_analyze_example_files
          COMMAND ${CMAKE_COMMAND} -DDIR=${analyze_dir}/example
-                 "-DFILES=report.html;results.json;summary.md;adev_gyro.svg;psd_gyro.svg;compliance.svg;dynamic_gx.svg;kalibr_imu_200Hz.yaml;filter_200Hz.json;px4_ekf2_200Hz.params"
+                 "-DFILES=report.html;results.json;summary.md;adev_gyro.svg;psd_gyro.svg;compliance.svg;dynamic_gx.svg;filter_200Hz.json"
+                 "-DABSENT=kalibr_imu_200Hz.yaml;openvins_imu_200Hz.yaml;vins_fusion_200Hz.yaml;gtsam_200Hz.txt;px4_ekf2_200Hz.params"
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_files.cmake)
 set_tests_properties(cli_analyze_example_files PROPERTIES DEPENDS cli_analyze_example)
+string(JOIN "@@" analyze_incomplete_json
+  "results.json::filter 0 not_written 0::^kalibr_imu_200Hz.yaml$"
+  "results.json::filter 0 files 0::^filter_200Hz.json$")
+add_test(NAME cli_analyze_example_incomplete_not_written
+         COMMAND ${CMAKE_COMMAND} -DDIR=${analyze_dir}/example "-DJSON_MATCH=${analyze_incomplete_json}"
+                 "-DTEXT_MATCH=report.html::id=\"warnings\".*not written: kalibr_imu_200Hz.yaml, openvins_imu_200Hz.yaml, vins_fusion_200Hz.yaml, gtsam_200Hz.txt, px4_ekf2_200Hz.params: their filters need the white noise and bias of both sensors and the log gives no accelerometer white noise and bias"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_json.cmake)
+set_tests_properties(cli_analyze_example_incomplete_not_written PROPERTIES DEPENDS cli_analyze_example)
 sigmatau_cli_test(NAME cli_analyze_refuses_existing EXIT 2 STDERR "exists; use --force"
   ARGS analyze ${example} --time-column t -o ${analyze_dir}/example)
 set_tests_properties(cli_analyze_refuses_existing PROPERTIES DEPENDS cli_analyze_example_files)

@@ -8,24 +8,24 @@ file(MAKE_DIRECTORY ${caveats_out})
 # A rejected fit: said on stderr and in the file's header, the file still written (exit 0).
 sigmatau_cli_test(NAME cli_convert_fit_rejected EXIT 0
   STDERR "warning: .*fit_rejected.json: the noise-term fit is rejected by its goodness of fit \\(p < 0.001\\) on gx \\(p = 0, worst at tau = 0.02 s\\)"
-  STDOUT "^# Kalibr imu.yaml[^\n]*\n# WARNING: the noise-term fit is rejected .* on gx .*fit / analyze --tau-min.*\ngyroscope_noise_density: "
-  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr)
+  STDOUT "^# Kalibr imu.yaml[^\n]*\n# WARNING: incomplete: accelerometer_noise_density[^\n]*\n# WARNING: the noise-term fit is rejected .* on gx .*fit / analyze --tau-min.*\ngyroscope_noise_density: "
+  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr --allow-incomplete)
 # The level of the bounds (here no K on any axis, B everywhere: the rule of thumb, no bound) and
 # the method: the joint fit at 95 %.
 sigmatau_cli_test(NAME cli_convert_fit_method_level EXIT 0
   STDOUT "# note: terms from the joint noise-term fit, bounds and intervals at 95 %\n"
-  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to px4)
+  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to px4 --allow-incomplete)
 # Gauss-Markov: each axis's measured tau of the ADEV minimum, not a fixed 100 s.
 sigmatau_cli_test(NAME cli_convert_fit_gm_measured_tau EXIT 0
   STDOUT "matched at the ADEV minimum at tau = 327.68 s \\(x\\), 327.68 s \\(y\\), 163.84 s \\(z\\): the tau of the ADEV minimum the fit measured"
-  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr --bias-model gm)
+  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr --bias-model gm --allow-incomplete)
 sigmatau_cli_test(NAME cli_convert_fit_gm_given_tau EXIT 0
   STDOUT "matched at the ADEV minimum at tau = 400 s: given \\(convert --tau-min\\)"
-  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr --bias-model gm --tau-min 400s)
+  ARGS convert --fit ${caveats_data}/fit_rejected.json --rate 100 --to kalibr --bias-model gm --tau-min 400s --allow-incomplete)
 # ROS field names without a quantity are gyro axes (the first letter 'a' made them accelerometers).
 sigmatau_cli_test(NAME cli_convert_fit_ros_names EXIT 0
   STDOUT "\ngyroscope_noise_density: 0.0001 .*\ngyroscope_random_walk: 2.0e-06"
-  ARGS convert --fit ${caveats_data}/fit_ros_names.json --rate 100 --to kalibr)
+  ARGS convert --fit ${caveats_data}/fit_ros_names.json --rate 100 --to kalibr --allow-incomplete)
 
 # analyze on a log in g read as m/s^2 (units forgotten), filter rate above the log's: every file
 # says so, and convert --fit on its results.json repeats it on stderr.

@@ -18,11 +18,11 @@ add_test(NAME cli_fit_log_rate_from_log_json
 set_tests_properties(cli_fit_log_rate_from_log_json PROPERTIES DEPENDS cli_fit_log_rate_from_log)
 sigmatau_cli_test(NAME cli_fit_log_rate_convert_note EXIT 0 STDERR "${fit_rate_note}"
   STDOUT "# note: the filter rate 200 Hz is above the log's sample rate 100 Hz"
-  ARGS convert --fit ${fit_rate_dir}/from_log.json --rate 200 --to kalibr)
+  ARGS convert --fit ${fit_rate_dir}/from_log.json --rate 200 --to kalibr --allow-incomplete)
 set_tests_properties(cli_fit_log_rate_convert_note PROPERTIES DEPENDS cli_fit_log_rate_from_log)
 # At the log's own rate there is nothing to say.
 add_test(NAME cli_fit_log_rate_convert_same_rate
-         COMMAND sigmatau_cli convert --fit ${fit_rate_dir}/from_log.json --rate 100 --to kalibr)
+         COMMAND sigmatau_cli convert --fit ${fit_rate_dir}/from_log.json --rate 100 --to kalibr --allow-incomplete)
 set_tests_properties(cli_fit_log_rate_convert_same_rate PROPERTIES
                      DEPENDS cli_fit_log_rate_from_log FAIL_REGULAR_EXPRESSION "above the log's")
 
@@ -39,13 +39,13 @@ add_test(NAME cli_fit_log_rate_from_adev_json
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/support/expect_json.cmake)
 set_tests_properties(cli_fit_log_rate_from_adev_json PROPERTIES DEPENDS cli_fit_log_rate_from_adev)
 sigmatau_cli_test(NAME cli_fit_log_rate_from_adev_convert_note EXIT 0 STDERR "${fit_rate_note}"
-  ARGS convert --fit ${fit_rate_dir}/from_adev.json --rate 200 --to px4)
+  ARGS convert --fit ${fit_rate_dir}/from_adev.json --rate 200 --to px4 --allow-incomplete)
 set_tests_properties(cli_fit_log_rate_from_adev_convert_note PROPERTIES
                      DEPENDS cli_fit_log_rate_from_adev)
 
 # A fit result without the rate (written before fit recorded it) is still read, without the note.
 add_test(NAME cli_fit_log_rate_old_json
          COMMAND sigmatau_cli convert --fit ${PROJECT_SOURCE_DIR}/tests/data/convert/fit_ros_names.json
-                 --rate 1000 --to kalibr)
+                 --rate 1000 --to kalibr --allow-incomplete)
 set_tests_properties(cli_fit_log_rate_old_json PROPERTIES
                      FAIL_REGULAR_EXPRESSION "above the log's")

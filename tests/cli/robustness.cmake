@@ -23,22 +23,28 @@ string(CONCAT robust_prologue "${sigmatau_cli_shell_prologue}" [=[
 empty() { left=$(ls -A "$1"); [ -z "$left" ] || fail "$1 is not empty: $left"; }
 ]=])
 
-# --force: $4 is the output kind (file|dir), the rest the verb's arguments without -o.
+# --force: $4 is the output kind (file|dir), the rest the verb's arguments without -o. The
+# existing directory is an earlier report (the only kind --force replaces: output_safety.cmake)
+# whose results.json was then changed.
 set(force_check [=[
 kind=$1; shift
 out=$W/out
-if [ "$kind" = dir ]; then mkdir "$out" && echo keep >"$out/keep"; else echo keep >"$out"; fi
+if [ "$kind" = dir ]; then
+  "$S" "$@" -o "$out" >/dev/null 2>&1 && echo keep >"$out/results.json" || fail "no earlier report"
+else
+  echo keep >"$out"
+fi
 run "$@" -o "$out"
 expect 2 "exists; use --force"
 if [ "$kind" = dir ]; then
-  [ "$(cat "$out/keep")" = keep ] || fail "the existing directory was changed"
+  [ "$(cat "$out/results.json")" = keep ] || fail "the existing directory was changed"
 else
   [ "$(cat "$out")" = keep ] || fail "the existing file was changed"
 fi
 run "$@" -o "$out" --force
 expect 0 ""
 if [ "$kind" = dir ]; then
-  [ ! -e "$out/keep" ] && [ -s "$out/results.json" ] || fail "--force did not replace the directory"
+  [ "$(cat "$out/results.json")" != keep ] && [ -s "$out/results.json" ] || fail "--force did not replace the directory"
 else
   [ "$(cat "$out")" != keep ] && [ -s "$out" ] || fail "--force did not replace the file"
 fi
@@ -52,7 +58,7 @@ sigmatau_robust_test(cli_robust_force_psd "${robust_prologue}${force_check}"
 sigmatau_robust_test(cli_robust_force_fit "${robust_prologue}${force_check}"
   file fit ${robust_log} --time-column t)
 sigmatau_robust_test(cli_robust_force_convert "${robust_prologue}${force_check}"
-  file convert --spec bosch_bmi088 --rate 200 --to kalibr)
+  file convert --spec safran_stim300 --rate 200 --to kalibr)
 sigmatau_robust_test(cli_robust_force_simulate "${robust_prologue}${force_check}"
   file simulate --model "N=0.15 deg/sqrt(h)" --rate 100 --duration "10 s")
 sigmatau_robust_test(cli_robust_force_analyze "${robust_prologue}${force_check}"

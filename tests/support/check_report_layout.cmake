@@ -5,11 +5,7 @@
 # of its long lines was not on screen). A probe script is appended to a copy of the page (the
 # report itself has none); its finding is read from the DOM Chromium dumps. Exits 77 (skipped)
 # without Chromium.
-find_program(CHROMIUM NAMES chromium chromium-browser)
-if(NOT CHROMIUM)
-  message("SKIPPED: chromium not installed (apt-get install chromium)")
-  cmake_language(EXIT 77)
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/chromium_probe.cmake)
 if(NOT WIDTH)
   set(WIDTH 1200)
 endif()
@@ -30,21 +26,9 @@ if (document.documentElement.scrollWidth > limit + 1) bad.push('page-wider-than-
 document.body.setAttribute('data-layout', bad.length ? bad.slice(0, 20).join(' ') : 'ok');
 document.body.setAttribute('data-files', String(document.querySelectorAll('details.file').length));
 </script>\n")
-set(profile "${DIR}/../chromium-layout-profile")
-file(REMOVE_RECURSE "${profile}")
-execute_process(
-  COMMAND ${CHROMIUM} --headless --no-sandbox --disable-gpu --disable-quic --no-first-run
-          --disable-background-networking --disable-component-update --disable-sync
-          --user-data-dir=${profile} --hide-scrollbars --window-size=${WIDTH},2600
-          --virtual-time-budget=3000 --dump-dom "file://${probe}"
-  RESULT_VARIABLE code OUTPUT_VARIABLE dom ERROR_VARIABLE log TIMEOUT 120)
-file(REMOVE_RECURSE "${profile}")
-file(REMOVE "${probe}")
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "chromium exited with ${code}:\n${log}")
-endif()
+chromium_dump("${probe}" ${WIDTH} "${DIR}/../chromium-layout-profile" dom)
 if(NOT dom MATCHES "data-layout=\"([^\"]*)\"")
-  message(FATAL_ERROR "the layout probe did not run in Chromium:\n${log}")
+  message(FATAL_ERROR "the layout probe did not run in Chromium:\n${dom_log}")
 endif()
 set(layout "${CMAKE_MATCH_1}")
 if(NOT layout STREQUAL "ok")

@@ -117,6 +117,16 @@ struct TriadNoise {
 /// The same terms on all three axes.
 TriadNoise uniform_triad(Sensor sensor, const NoiseTerms& terms);
 
+/// Puts terms typed by the user for `sensor` into `triads` (a data sheet's, a fit's, or none),
+/// on every axis: a white noise N (`typed.white`) replaces the source's; a bias stability B or
+/// a random walk K (`typed.bias_instability`, `typed.rate_random_walk`) replaces the source's
+/// whole bias (B, K, Gauss-Markov, and any fit upper bound standing in for them), so the bias
+/// written is the typed one. A sensor `triads` lacks is added. `white_origin` / `bias_origin`
+/// say what was typed; the explanation adds what it replaced.
+void replace_with_typed_terms(std::vector<TriadNoise>& triads, Sensor sensor,
+                              const NoiseTerms& typed, const std::string& white_origin,
+                              const std::string& bias_origin);
+
 /// The noise terms of one data-sheet section (nominal values: typ, else max; SpecValue::nominal):
 /// N from the printed ARW / VRW if any, else from the noise density under `convention`;
 /// B = bias stability / 0.664 (the printed value read as the ADEV floor); K from the rate

@@ -58,8 +58,9 @@ struct CompliancePlot {
   std::vector<ComplianceRow> rows;
 };
 
-/// The x range of the compliance chart: every positive ratio and its interval, and always the
-/// limit line at 1, with a margin of 1.5x on each side (log axis). Autoscaling put the axis
+/// The x range of the compliance chart: every positive ratio and its interval, the tip of each
+/// bound's arrow (bound / 1.8, compliance.gp), and always the limit line at 1, with a margin of
+/// 1.5x on each side (log axis). Autoscaling put the axis
 /// start at 1 when every item failed, so the limit line sat on the frame. When that holds no
 /// labelled tick but 1 (every ratio within 0.75-1.33: the labels are 1-2-5 steps), it is
 /// widened on the nearer side to show 0.5 or 2 as well.

@@ -37,11 +37,11 @@ struct ReportFiles {
 ReportFiles build_report(const std::string& results_json, const ReportOptions& options,
                          const std::map<std::string, std::string>& filter_files = {});
 
-/// Writes `files` into directory `dir` atomically as a whole: everything goes into a fresh
-/// sibling directory, which is renamed to `dir` at the end. An existing `dir` is an Error unless
-/// `overwrite` (then it is replaced only after the new one is complete). `dir` goes through
-/// check_output_directory first: a link to it is followed (never replaced), and a device, pipe
-/// or socket is refused even with `overwrite`. Missing parent directories are created.
+/// Writes `files` into directory `dir` atomically as a whole (write_directory_atomically,
+/// output_file.hpp): built in a fresh sibling directory, marked as sigmatau's, renamed to `dir`
+/// at the end. An existing `dir` is an Error unless `overwrite`, and even then unless it is an
+/// earlier report of sigmatau's holding no input (check_output_directory); it is replaced only
+/// once the new one is complete. Missing parent directories are created.
 void write_output_directory(const std::filesystem::path& dir, const ReportFiles& files,
                             bool overwrite);
 
