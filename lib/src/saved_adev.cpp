@@ -7,6 +7,7 @@
 
 #include "json_fields.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 
 namespace sigmatau {
@@ -41,8 +42,9 @@ SavedAdev read_adev_json(std::string_view text, const std::string& file) {
   const json& results = need(doc, "results", top);
   need(input, "rate_hz", top.at("input"));
   need(input, "samples", top.at("input"));
-  const double rate_hz =
-      detail::required_number(input, "rate_hz", top.at("input"), NumberRule::positive);
+  const double rate_hz = checked_rate_hz(
+      detail::required_number(input, "rate_hz", top.at("input"), NumberRule::positive),
+      file + ": input.rate_hz");
   // A series of fewer than 2 samples has no deviation at all.
   constexpr std::int64_t kFewestSamples = 2;
   const std::int64_t samples =

@@ -155,3 +155,11 @@ echo "ok: the .gz was counted inflated, out of core and bounded, the same number
 add_test(NAME cli_extreme_gzip_bomb
          COMMAND bash -c "${sigmatau_cli_shell_prologue}${extreme_gzip_bomb}" extreme_gzip_bomb
                  $<TARGET_FILE:sigmatau_cli> ${extreme_dir}/gzip_bomb ${extreme_white})
+
+# A saved adev result whose rate is out of range is refused naming its field (fit read it and
+# computed with it).
+file(WRITE ${extreme_dir}/rate_1e80.json
+  "{\"tool\": \"sigmatau\", \"input\": {\"rate_hz\": 1e80, \"path\": \"x.csv\", \"samples\": 3000}, \"results\": [{\"statistic\": \"oadev\", \"points\": []}]}\n")
+sigmatau_cli_test(NAME cli_extreme_rate_saved_adev EXIT 2
+  STDERR "rate_1e80.json: input.rate_hz must be a rate from 1e-09 Hz to 1e\\+12 Hz"
+  ARGS fit ${extreme_dir}/rate_1e80.json)
