@@ -81,7 +81,8 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
       },
       stats,
       [&](std::int64_t n_phase_points, double tau0_s) {
-        return taus_per_statistic(taus, stats, n_phase_points, tau0_s, args.log.input);
+        return taus_per_statistic(taus, stats, n_phase_points, tau0_s, loaded.kind,
+                                  args.log.input);
       },
       args.ci, settings);
   progress.finish();
@@ -394,8 +395,8 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
   for (const auto& series : channels.front()) {
     longest = std::max<std::int64_t>(longest, static_cast<std::int64_t>(series.size()));
   }
-  const std::vector<TauSpec> specs = taus_per_statistic(taus, stats, longest,
-                                                        1.0 / loaded.rate_hz, args.log.input);
+  const std::vector<TauSpec> specs = taus_per_statistic(
+      taus, stats, longest, 1.0 / loaded.rate_hz, loaded.kind, args.log.input);
   return curves_for_specs(specs, stats, [&](const std::vector<Statistic>& some, const TauSpec& t) {
     return compute_segmented_allan_curves(channels, some, t, args.ci, args.threads,
                                           parse_edf_model(args.edf));
