@@ -443,3 +443,102 @@ TEST_CASE("Stable32 confidence intervals: Cs 5071A vs H-maser") {
                        {"ohdev_decade.txt", kOhdev},
                        {"totdev_decade.txt", kTotdev}});
 }
+
+namespace {
+
+/// The EDF whose two-sided 68.3 % chi-squared bounds give `bound / dev` (upper: the lower
+/// quantile), by bisection on the exact quantiles.
+double edf_from_bound_ratio(double ratio, bool upper) {
+  const double tail = (1 - kConfidence) / 2;
+  double lo = 0.5, hi = 1e7;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    const boost::math::chi_squared_distribution<double> chi2(mid);
+    const double r = std::sqrt(mid / boost::math::quantile(chi2, upper ? tail : 1 - tail));
+    // The upper ratio falls and the lower one rises towards 1 as the EDF grows.
+    if (upper ? r > ratio : r < ratio) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return std::sqrt(lo * hi);
+}
+
+}  // namespace
+
+TEST_CASE("TOTDEV EDF at flicker and random-walk FM: Howe's coefficients, as Stable32") {
+  // TOTDEV's EDF is b T/tau - c (T/tau = data points / m). NIST SP 1065 Table 7 prints b, c to
+  // two digits (1.17, 0.22 flicker FM; 0.93, 0.36 random-walk FM); D. A. Howe's total-variance
+  // papers give three (1.168, 0.222; 0.927, 0.358; 1.500, 0 white FM). Stable32's bounds tell
+  // which it uses where its chi-squared quantile is an iteration (EDF <= 100): the EDF implied by
+  // each printed bound ratio, divided by the bias of that inversion (Stable32's quantile and
+  // printing) measured on the same record's white-FM rows, whose EDF 1.5 T/tau is the same in
+  // both codings; the white-FM row with the nearest EDF gives the bias (0.9983-0.9987 on these
+  // records, so the inversion itself moves by up to 4e-4 between rows: 1e-3 leaves room for
+  // that and the printed digits). Measured: Howe's coefficients come within 8.1e-4 of the
+  // implied EDF on all 7 rows, SP 1065's two-digit ones are 1.3-3.4e-3 above on all 7.
+  struct Record {
+    Dataset data;
+    std::vector<const char*> tables;
+  };
+  const Record records[] = {
+      {{"allantools/ocxo", "ocxo_frequency.txt", Input::frequency_10mhz, 1.0, 0, kOcxoDeviation},
+       {"totdev_octave.txt"}},
+      {{"allantoolkit/Sr87", "freq/freq_data.txt", Input::fractional_frequency, 2.5, 1,
+        kPrintedDigits},
+       {"freq/octave/totdev.txt", "freq/decade/totdev.txt"}},
+      {{"allantoolkit/Sr87", "phase/phase_data.txt", Input::phase, 2.5, 0, kPrintedDigits},
+       {"phase/octave/totdev.txt", "phase/decade/totdev.txt"}},
+  };
+  constexpr double kMaxIteratedEdf = 100;  // Stable32 iterates its quantile up to here
+  constexpr double kImpliedEdf = 1e-3;
+  int checked = 0;
+  for (const Record& record : records) {
+    if (!test::has_reference_data(std::string(record.data.dir) + "/" + record.data.input)) return;
+    const PhaseSeries series = load_series(record.data);
+    const auto points = static_cast<double>(record_points(series));
+    struct Implied {
+      int alpha;
+      double ours, implied;
+      std::int64_t m;
+    };
+    std::vector<Implied> rows;
+    for (const char* file : record.tables) {
+      for (const Row& row : read_table(test::reference_data_dir() / record.data.dir / file)) {
+        if (row.min_sigma == 0 || row.alpha > 0) continue;
+        const double ours = equivalent_dof(Statistic::totdev, row.alpha, row.m,
+                                           record_points(series));
+        if (!(ours <= kMaxIteratedEdf)) continue;
+        const double implied = 0.5 * (edf_from_bound_ratio(row.max_sigma / row.sigma, true) +
+                                      edf_from_bound_ratio(row.min_sigma / row.sigma, false));
+        rows.push_back({row.alpha, ours, implied, row.m});
+      }
+    }
+    int white = 0;
+    for (const Implied& r : rows) {
+      if (r.alpha != 0) continue;
+      CHECK(r.ours == test::rel(1.5 * points / static_cast<double>(r.m), 1e-12));
+      ++white;
+    }
+    REQUIRE(white > 0);
+    for (const Implied& r : rows) {
+      if (r.alpha == 0) continue;
+      // The inversion's bias at this EDF: that of the white-FM row with the nearest EDF.
+      const Implied* nearest = nullptr;
+      for (const Implied& w : rows) {
+        if (w.alpha == 0 && (nearest == nullptr || std::abs(std::log(w.ours / r.ours)) <
+                                                       std::abs(std::log(nearest->ours / r.ours)))) {
+          nearest = &w;
+        }
+      }
+      const double bias = nearest->ours / nearest->implied;
+      INFO(std::string(record.data.dir) << " " << std::string(record.data.input) << " m " << r.m << " alpha " << r.alpha
+                           << ": ours " << r.ours << ", implied by Stable32's bounds "
+                           << r.implied * bias << " (inversion bias " << bias << ")");
+      SIGMATAU_CHECK_REL(r.ours, r.implied * bias, kImpliedEdf);
+      ++checked;
+    }
+  }
+  CHECK(checked == 7);  // ocxo m = 256, 512, 1024; Sr87 m = 200, 400 in freq and phase
+}

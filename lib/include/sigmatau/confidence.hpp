@@ -10,7 +10,8 @@
 ///    (B1 ratio and R(n) methods, used when too few points remain for the ACF).
 ///  - C. A. Greenhall, W. J. Riley, "Uncertainty of stability variances based on finite
 ///    differences", 35th PTTI, 2003 (EDF algorithm).
-///  - NIST SP 1065 Table 7 (TOTDEV EDF), eq. (45) (chi-squared interval).
+///  - NIST SP 1065 Table 7 (TOTDEV EDF b T/tau - c, with D. A. Howe's three-digit b and c, as
+///    Stable32 uses them), eq. (45) (chi-squared interval).
 ///
 /// alpha is the exponent of the fractional-frequency (rate) PSD S_y(f) ~ f^alpha:
 ///  +2 white PM (quantization), +1 flicker PM, 0 white FM (angle random walk),
