@@ -44,7 +44,7 @@ struct AdevArguments {
   int density = kDefaultStreamDensity;
   std::string memory = "4GiB";
   bool partial = false;
-  std::string edf = "greenhall";
+  std::string edf;  // greenhall|discrete; empty: by the data (edf_model_for)
 };
 
 /// --edf greenhall|discrete.
@@ -633,12 +633,16 @@ void add_adev_command(CLI::App& app) {
   command->add_option("--edf", args->edf,
                       "EDF of the intervals: greenhall (Greenhall & Riley's algorithm, the bounds "
                       "Stable32 prints) or discrete (exact for discrete power-law noise such as "
-                      "independent rate samples; up to 25 % apart at the smallest taus)")
-      ->capture_default_str();
+                      "independent rate samples; up to 25 % apart at the smallest taus). "
+                      "Default: discrete for IMU data (a ROS bag, a gyro or accelerometer unit), "
+                      "greenhall for clock data and values without a unit");
   command->add_flag("--partial",
                     args->partial, "stream mode: on a read error, still write the results for "
                                    "what was read (exit code stays 2)");
-  command->callback([args] { run_adev(*args); });
+  command->callback([args] {
+    args->edf = edf_model_name(args->edf, args->log, args->mode == "stream");
+    run_adev(*args);
+  });
 }
 
 }  // namespace sigmatau::cli

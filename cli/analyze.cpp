@@ -205,7 +205,10 @@ void add_analyze_command(CLI::App& app) {
                       "results; stdin and --gaps split/fill are always read into memory")
       ->capture_default_str();
   add_chain_options(*command, args->chain);
-  command->callback([args] { run_analyze(*args); });
+  command->callback([args] {
+    args->chain.edf_model = edf_model_for(args->log);  // discrete for IMU data
+    run_analyze(*args);
+  });
 }
 
 }  // namespace sigmatau::cli

@@ -304,6 +304,22 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   if (per_channel_units(args)) loaded.to_si = 1;
 }
 
+EdfModel edf_model_for(const LogArguments& args) {
+  const DataKind kind = parse_data_kind(args.kind);
+  // Units known from the data (a bag: rad/s and m/s^2) or named per sensor are IMU units.
+  if (is_bag_path(args.input) || !args.gyro_unit.empty() || !args.accel_unit.empty()) {
+    return default_edf_model(kind, sensor_unit_dimension(true, kind));
+  }
+  if (args.unit.empty()) return EdfModel::greenhall;  // unknown: as Stable32
+  return default_edf_model(kind, parse_unit(args.unit).dimension);
+}
+
+std::string edf_model_name(const std::string& given, const LogArguments& args, bool stream) {
+  if (!given.empty()) return given;
+  if (stream) return "greenhall";
+  return edf_model_for(args) == EdfModel::discrete ? "discrete" : "greenhall";
+}
+
 LoadedChannels load_channels(const LogArguments& args) {
   const LogOptions options = log_options_from(args);
   LoadedChannels loaded;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sigmatau/confidence.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/noise_model.hpp"
 #include "sigmatau/phase_series.hpp"
@@ -116,6 +117,16 @@ class Progress {
   double start_s_;
   double last_s_ = -1;
 };
+
+/// The EDF model for the log's data (default_edf_model): EdfModel::discrete for IMU data (a ROS
+/// bag, --gyro-unit / --accel-unit, a --unit of an angular rate or acceleration, of an angle or
+/// velocity with --kind increment or phase, or raw counts), EdfModel::greenhall for clock data
+/// and values without a unit.
+EdfModel edf_model_for(const LogArguments& args);
+
+/// adev's --edf: `given` when set, else edf_model_for's ("discrete" or "greenhall"); always
+/// "greenhall" by default in stream mode (`stream`), whose strided EDF follows Greenhall's.
+std::string edf_model_name(const std::string& given, const LogArguments& args, bool stream);
 
 /// Splits "a,b,c" (empty fields are an Error naming the option).
 std::vector<std::string> split_list(const std::string& text, const std::string& option);

@@ -296,6 +296,14 @@ double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
   return kNaN;
 }
 
+EdfModel default_edf_model(DataKind kind, const Dimension& unit) {
+  // Increments and phase are per-sample amounts: rad and m/s where rates are rad/s and m/s^2.
+  const bool amount = kind != DataKind::rate;
+  const bool gyro = unit == (amount ? dim::angle : dim::angular_rate);
+  const bool accel = unit == (amount ? dim::velocity : dim::acceleration);
+  return gyro || accel || unit.counts2 != 0 ? EdfModel::discrete : EdfModel::greenhall;
+}
+
 double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
                       std::int64_t n_phase_points, EdfModel model) {
   if (model == EdfModel::discrete && statistic != Statistic::totdev &&
