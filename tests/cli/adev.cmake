@@ -116,3 +116,9 @@ file(WRITE ${found_dir}/status.csv "t,gx,status\n0.00,1.0,OK\n0.01,1.1,OK\n0.02,
 sigmatau_cli_test(NAME cli_column_text_noted EXIT 0
   STDERR "column \"status\" holds text, not numbers \\(line 2: \"OK\"\\), and is not analysed"
   ARGS adev ${found_dir}/status.csv --taus 0.01)
+# analyze with --gyro / --accel: a channel they do not name is said to be left out.
+file(WRITE ${found_dir}/mag.csv "t,gx,gy,gz,ax,ay,az,mx\n0.00,1,2,3,4,5,6,7\n0.01,1.1,2.1,3,4,5.1,6,7\n0.02,0.9,2,3.1,4.1,5,6,7.1\n0.03,1,1.9,3,4,5,6.1,7\n")
+sigmatau_cli_test(NAME cli_analyze_named_channels_note EXIT 0
+  STDERR "mx not analysed \\(--gyro / --accel name the channels"
+  ARGS analyze ${found_dir}/mag.csv --gyro gx,gy,gz --accel ax,ay,az --taus 0.01
+       -o ${found_dir}/mag_report)
