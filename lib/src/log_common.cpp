@@ -35,13 +35,6 @@ constexpr std::size_t kMaxListedNames = 20;
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
-/// "c<index>", the name of a column without a header. (Built by append: `"c" + to_string`
-/// trips GCC 12's false -Wrestrict, bug 105329.)
-std::string unnamed_column(std::size_t index) {
-  std::string name(1, 'c');
-  name.append(std::to_string(index));
-  return name;
-}
 bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
 }
@@ -54,6 +47,13 @@ std::string format_seconds_ratio(double r) {
 double rate_hz_of(double nominal_s) { return nominal_s > 0 ? 1.0 / nominal_s : 0.0; }
 
 }  // namespace
+
+std::string unnamed_column(std::size_t index) {
+  // Built by append: `"c" + to_string` trips GCC 12's false -Wrestrict, bug 105329.
+  std::string name(1, 'c');
+  name.append(std::to_string(index));
+  return name;
+}
 
 std::string format_seconds(double s) {
   const double a = std::abs(s);

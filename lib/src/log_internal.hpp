@@ -29,6 +29,9 @@ constexpr std::size_t kMaxQuotedField = 40;
 /// nominal interval.
 inline constexpr double kGapFactor = 1.5;
 
+/// "c<index>", the name of a column without a header (or with an empty name).
+std::string unnamed_column(std::size_t index);
+
 /// A duration for a message: "40 ms", "2.5 s", "-3 us" (4 significant digits).
 std::string format_seconds(double s);
 

@@ -166,7 +166,7 @@ TextLog::TextLog(ByteSource& source, const LogOptions& options, std::size_t bloc
     fail(line_, 0, "the first data row holds no number" + semicolon_hint("it"));
   }
   const auto label = [&](std::size_t c) {
-    return header && !names[c].empty() ? names[c] : "c" + std::to_string(c);
+    return header && !names[c].empty() ? names[c] : unnamed_column(c);
   };
   // Columns whose first data field is not a number (read by default only when numeric): a
   // number with a decimal comma is an error; a column that holds numbers in most of the rows
@@ -416,7 +416,7 @@ double TextLog::number_or_fail(const char* b, const char* e, std::size_t field) 
     const int slot = selection_.slots[field];
     fail_decimal_comma(line_, field, shown,
                        slot >= 0 ? selection_.channel_names[static_cast<std::size_t>(slot)]
-                                 : "c" + std::to_string(field));
+                                 : unnamed_column(field));
   }
   fail(line_, static_cast<std::int64_t>(field + 1),
        shown.empty() ? std::string("expected a number, found an empty field")
