@@ -855,11 +855,19 @@ TEST_CASE("a time column is found by its name, its suffix giving the unit") {
     CHECK(log.channel_names == std::vector<std::string>{"T", "gx"});
     CHECK(log.timing.header.time_column_not_increasing == "T");
   }
-  SUBCASE("two time columns by name are an error naming both") {
+  SUBCASE("t beside a temperature named T: t is the time column") {
+    const Log log = found("t,T,gx\n0,25.1,1\n0.01,25.0,2\n0.02,25.1,3\n0.03,25.1,4\n");
+    CHECK(log.timing.header.time_column_found == "t");
+    CHECK(log.timing.header.time_column_not_increasing == "T");
+    CHECK(log.channel_names == std::vector<std::string>{"T", "gx"});
+    CHECK(log.timing.rate_hz == rel(100, 1e-9));
+  }
+  SUBCASE("two increasing time columns by name are an error naming both") {
     TempFile f("t,timestamp_ns,gx\n0,0,1\n0.01,10000000,2\n", ".csv");
     LogOptions o = text_options(f.path());
     o.find_time_column = true;
-    CHECK_THROWS_WITH_AS(read_log(o), doctest::Contains("\"t\" and \"timestamp_ns\" are both named"),
+    CHECK_THROWS_WITH_AS(read_log(o),
+                         doctest::Contains(":1: columns \"t\" and \"timestamp_ns\" are both named"),
                          ParseError);
   }
 }

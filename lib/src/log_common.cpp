@@ -243,16 +243,15 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
       });
     };
     for (std::size_t c = 0; c < count; ++c) {
-      if (!time_column_name(names[c]).is_time || asked(c)) continue;
-      if (time_index >= 0) {
-        throw ParseError(file, names_line, 0,
-                         "columns \"" + names[static_cast<std::size_t>(time_index)] + "\" and \"" +
-                             names[c] + "\" are both named as time stamps: name the time column "
-                             "(time_column)");
+      if (time_column_name(names[c]).is_time && !asked(c)) {
+        sel.time_candidates.push_back(static_cast<int>(c));
       }
-      time_index = static_cast<int>(c);
     }
-    if (time_index >= 0) sel.time_column_found = names[static_cast<std::size_t>(time_index)];
+    // Two or more (t and a temperature named T): the reader keeps the one whose values increase.
+    if (sel.time_candidates.size() == 1) {
+      time_index = sel.time_candidates.front();
+      sel.time_column_found = names[static_cast<std::size_t>(time_index)];
+    }
   }
   if (time_index >= 0) {
     sel.slots[static_cast<std::size_t>(time_index)] = kTimeColumn;

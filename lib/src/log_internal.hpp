@@ -64,6 +64,9 @@ struct ColumnSelection {
   TimeUnit time_unit = TimeUnit::s;  ///< of the time column (LogOptions, else its name's suffix)
   bool time_unit_from_name = false;
   std::string time_column_found;     ///< found by name (LogOptions::find_time_column), or ""
+  /// The columns named as time stamps (LogOptions::find_time_column); with two or more none is
+  /// taken here: the text reader keeps the one whose values increase.
+  std::vector<int> time_candidates;
 };
 
 /// The unit a time column's name gives ("t_ms", "time [us]", "Timestamp_ns", "t_mjd": days),

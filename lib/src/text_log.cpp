@@ -202,17 +202,31 @@ TextLog::TextLog(ByteSource& source, const LogOptions& options, std::size_t bloc
   }
   selection_ = select_columns(names, header, numeric, options, source_.name(),
                               header ? header_line : first_line, first_line, "column");
-  // A column found by its name whose values do not increase is no time column (a temperature
-  // named T): it stays a channel.
-  if (!selection_.time_column_found.empty()) {
-    std::size_t time = 0;
-    while (selection_.slots[time] != kTimeColumn) ++time;
-    if (!increases_ahead(time)) {
-      notes.time_column_not_increasing = selection_.time_column_found;
-      LogOptions no_time = options;
-      no_time.find_time_column = false;
-      selection_ = select_columns(names, header, numeric, no_time, source_.name(),
-                                  header ? header_line : first_line, first_line, "column");
+  // Of the columns named as time stamps, the one whose values increase is the time column; the
+  // others (a temperature named T) stay channels.
+  if (!selection_.time_candidates.empty()) {
+    std::vector<int> increasing;
+    for (const int c : selection_.time_candidates) {
+      if (increases_ahead(static_cast<std::size_t>(c))) {
+        increasing.push_back(c);
+      } else {
+        notes.time_column_not_increasing += (notes.time_column_not_increasing.empty() ? "" : ", ") +
+                                            label(static_cast<std::size_t>(c));
+      }
+    }
+    if (increasing.size() > 1) {
+      fail(header_line, 0,
+           "columns \"" + label(static_cast<std::size_t>(increasing[0])) + "\" and \"" +
+               label(static_cast<std::size_t>(increasing[1])) +
+               "\" are both named as time stamps: name the time column (time_column)");
+    }
+    LogOptions chosen = options;
+    chosen.find_time_column = false;
+    if (increasing.size() == 1) chosen.time_column = std::to_string(increasing.front());
+    selection_ = select_columns(names, header, numeric, chosen, source_.name(),
+                                header ? header_line : first_line, first_line, "column");
+    if (increasing.size() == 1) {
+      selection_.time_column_found = label(static_cast<std::size_t>(increasing.front()));
     }
   }
   // A Stable32 data file of two columns is a time tag and the value; Stable32 ignores the tags

@@ -114,9 +114,9 @@ struct LogOptions {
                                      ///< (or the one found by name, find_time_column)
   /// When time_column is empty: the header column named t, time or timestamp (any case), alone
   /// or with a unit suffix ("_s", "_ms", "_us", "_ns", "_min", "_h", "_d", "_mjd", or in brackets:
-  /// "time [ms]"), is the time column; two such columns are a ParseError. A column named in
-  /// `columns` is never taken, nor one whose values do not increase in the first rows
-  /// (TextHeader::time_column_not_increasing).
+  /// "time [ms]"), is the time column. A column named in `columns` is never taken, nor one whose
+  /// values do not increase in the first rows (TextHeader::time_column_not_increasing: of t and
+  /// a temperature named T, t is taken); two that both increase are a ParseError.
   bool find_time_column = false;
   /// Unit of the time column's values; unset: the unit suffix of its name (t_ms: ms), else s.
   std::optional<TimeUnit> time_unit;
@@ -196,8 +196,8 @@ struct TextColumn {
 struct TextHeader {
   std::vector<TextColumn> text_columns;  ///< columns left out as text, in file order
   std::string time_column_found;  ///< the time column found by name (find_time_column), or ""
-  /// A column named as time stamps whose values do not increase (a temperature named T): read
-  /// as a channel, not as the time column; "" otherwise.
+  /// The columns named as time stamps whose values do not increase (a temperature named T),
+  /// comma-separated: read as channels, not as the time column; "" when none.
   std::string time_column_not_increasing;
   TimeUnit time_unit = TimeUnit::s;  ///< the time column's unit as used
   bool time_unit_from_name = false;  ///< whether that unit came from the column's name
