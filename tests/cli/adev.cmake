@@ -85,12 +85,12 @@ set(found_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_time_found)
 file(REMOVE_RECURSE ${found_dir})
 file(MAKE_DIRECTORY ${found_dir})
 add_test(NAME cli_time_found_simulate COMMAND $<TARGET_FILE:sigmatau_cli> simulate
-         --model "N=0.15 deg/sqrt(h)" --rate 100 --duration 2min -o ${found_dir}/sim.csv)
+         --model "N=0.15 deg/sqrt(h)" --rate 100 --duration 2min -o ${found_dir}/sim.csv --force)
 sigmatau_cli_test(NAME cli_time_found_adev EXIT 0
   STDOUT "12000 samples at 100 Hz" STDERR "time column \"t\" found by its name"
   ARGS adev ${found_dir}/sim.csv --taus 1)
 sigmatau_cli_test(NAME cli_time_found_analyze EXIT 0 STDOUT "wrote "
-  ARGS analyze ${found_dir}/sim.csv --gyro-unit rad/s -o ${found_dir}/report)
+  ARGS analyze ${found_dir}/sim.csv --gyro-unit rad/s -o ${found_dir}/report --force)
 set_tests_properties(cli_time_found_adev cli_time_found_analyze PROPERTIES
                      DEPENDS cli_time_found_simulate)
 sigmatau_cli_test(NAME cli_time_found_suffix_ns EXIT 0 STDOUT "400 samples at 100 Hz"
@@ -121,4 +121,4 @@ file(WRITE ${found_dir}/mag.csv "t,gx,gy,gz,ax,ay,az,mx\n0.00,1,2,3,4,5,6,7\n0.0
 sigmatau_cli_test(NAME cli_analyze_named_channels_note EXIT 0
   STDERR "mx not analysed \\(--gyro / --accel name the channels"
   ARGS analyze ${found_dir}/mag.csv --gyro gx,gy,gz --accel ax,ay,az --taus 0.01
-       -o ${found_dir}/mag_report)
+       -o ${found_dir}/mag_report --force)

@@ -29,7 +29,7 @@ set(edf_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_edf_default)
 file(REMOVE_RECURSE ${edf_dir})
 sigmatau_cli_test(NAME cli_analyze_edf_default_imu EXIT 0
   ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t
-       --gyro-unit deg/s --accel-unit g -o ${edf_dir}/imu)
+       --gyro-unit deg/s --accel-unit g -o ${edf_dir}/imu --force)
 add_test(NAME cli_analyze_edf_default_imu_recorded
          COMMAND ${CMAKE_COMMAND} -DFILE=${edf_dir}/imu/results.json
                  "-DPATTERN=\"edf_model\": \"discrete\""
