@@ -10,6 +10,15 @@ sigmatau_cli_test(NAME cli_clock_phase_oadev_last_octave EXIT 0
 sigmatau_cli_test(NAME cli_clock_phase_totdev_half EXIT 0
   STDOUT "\n +500 +500 +998 "
   ARGS adev ${clock_data}/clock_phase_1000.txt --kind phase --rate 1 --taus 500 --stat totdev)
+# The same limit out of core (--memory 1K) and in stream mode (its strided terms).
+sigmatau_cli_test(NAME cli_clock_phase_oadev_last_octave_out_of_core EXIT 0
+  STDOUT "\n +250 +250 +500 "
+  ARGS adev ${clock_data}/clock_phase_1000.txt --kind phase --rate 1 --taus 250 --stat oadev
+       --memory 1K)
+sigmatau_cli_test(NAME cli_clock_phase_oadev_last_octave_stream EXIT 0
+  STDOUT "\n +250 +250 +[0-9]+ "
+  ARGS adev ${clock_data}/clock_phase_1000.txt --kind phase --rate 1 --taus 250 --stat oadev
+       --mode stream)
 sigmatau_cli_test(NAME cli_clock_phase_beyond EXIT 2
   STDERR "tau 251 s is too long for oadev on this log: the longest is 250 s \\(m = 250 of 1000 phase points\\)"
   ARGS adev ${clock_data}/clock_phase_1000.txt --kind phase --rate 1 --taus 251 --stat oadev)
