@@ -45,7 +45,7 @@ struct AdevArguments {
   int density = kDefaultStreamDensity;
   std::string memory = "4GiB";
   bool partial = false;
-  std::string edf = "greenhall";
+  std::string edf;  // greenhall|discrete; empty: by the data (edf_model_for)
 };
 
 /// --edf greenhall|discrete.
@@ -82,7 +82,8 @@ std::vector<std::vector<AllanCurve>> run_out_of_core(const AdevArguments& args,
       },
       stats,
       [&](std::int64_t n_phase_points, double tau0_s) {
-        return taus_per_statistic(taus, stats, n_phase_points, tau0_s, args.log.input);
+        return taus_per_statistic(taus, stats, n_phase_points, tau0_s, loaded.kind,
+                                  args.log.input);
       },
       args.ci, settings);
   progress.finish();
@@ -395,8 +396,8 @@ std::vector<std::vector<AllanCurve>> split_curves(const AdevArguments& args,
   for (const auto& series : channels.front()) {
     longest = std::max<std::int64_t>(longest, static_cast<std::int64_t>(series.size()));
   }
-  const std::vector<TauSpec> specs = taus_per_statistic(taus, stats, longest,
-                                                        1.0 / loaded.rate_hz, args.log.input);
+  const std::vector<TauSpec> specs = taus_per_statistic(
+      taus, stats, longest, 1.0 / loaded.rate_hz, loaded.kind, args.log.input);
   return curves_for_specs(specs, stats, [&](const std::vector<Statistic>& some, const TauSpec& t) {
     return compute_segmented_allan_curves(channels, some, t, args.ci, args.threads,
                                           parse_edf_model(args.edf));
@@ -637,12 +638,16 @@ void add_adev_command(CLI::App& app) {
   command->add_option("--edf", args->edf,
                       "EDF of the intervals: greenhall (Greenhall & Riley's algorithm, the bounds "
                       "Stable32 prints) or discrete (exact for discrete power-law noise such as "
-                      "independent rate samples; up to 25 % apart at the smallest taus)")
-      ->capture_default_str();
+                      "independent rate samples; up to 25 % apart at the smallest taus). "
+                      "Default: discrete for IMU data (a ROS bag, a gyro or accelerometer unit), "
+                      "greenhall for clock data and values without a unit");
   command->add_flag("--partial",
                     args->partial, "stream mode: on a read error, still write the results for "
                                    "what was read (exit code stays 2)");
-  command->callback([args] { run_adev(*args); });
+  command->callback([args] {
+    args->edf = edf_model_name(args->edf, args->log, args->mode == "stream");
+    run_adev(*args);
+  });
 }
 
 }  // namespace sigmatau::cli

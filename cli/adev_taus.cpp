@@ -14,7 +14,7 @@ namespace sigmatau::cli {
 /// stays in every list, so that averaging_factors reports it as before (exit 2).
 std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
                                         std::int64_t n_phase_points, double tau0_s,
-                                        const std::string& input) {
+                                        DataKind kind, const std::string& input) {
   std::vector<TauSpec> specs(stats.size(), taus);
   if (taus.kind != TauSpec::Kind::explicit_seconds || stats.size() < 2) return specs;
   for (auto& spec : specs) spec.seconds.clear();
@@ -24,7 +24,7 @@ std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<S
     std::vector<bool> reach(stats.size());
     bool any = false;
     for (std::size_t s = 0; s < stats.size(); ++s) {
-      reach[s] = m <= static_cast<double>(max_averaging_factor(stats[s], n_phase_points));
+      reach[s] = m <= static_cast<double>(max_averaging_factor(stats[s], n_phase_points, kind));
       any = any || reach[s];
     }
     for (std::size_t s = 0; s < stats.size(); ++s) {
@@ -39,7 +39,7 @@ std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<S
   }
   for (std::size_t s = 0; s < stats.size(); ++s) {
     if (skipped[s].empty()) continue;
-    const std::int64_t max_m = max_averaging_factor(stats[s], n_phase_points);
+    const std::int64_t max_m = max_averaging_factor(stats[s], n_phase_points, kind);
     std::cerr << "sigmatau: note: " << input << ": " << to_string(stats[s])
               << " skips tau " << skipped[s] << " s: its longest on this log is "
               << static_cast<double>(max_m) * tau0_s << " s (m = " << max_m << ")\n";
@@ -90,7 +90,7 @@ std::vector<std::vector<AllanCurve>> curves_per_statistic(const std::vector<Phas
                                                           const std::string& input) {
   const std::vector<TauSpec> specs = taus_per_statistic(
       taus, stats, static_cast<std::int64_t>(series.front().size()), series.front().tau0_s(),
-      input);
+      series.front().kind(), input);
   return curves_for_specs(specs, stats, [&](const std::vector<Statistic>& some, const TauSpec& t) {
     return compute_allan_curves(series, some, t, ci, threads, edf_model);
   });

@@ -15,12 +15,13 @@
 namespace sigmatau::cli {
 
 /// Per statistic, `taus` with the explicit seconds it cannot reach on `n_phase_points` (of
-/// interval tau0_s [s]) left out and noted on stderr (naming `input`); a tau no statistic
-/// reaches stays in every list, so averaging_factors reports it. Non-explicit specs and a
-/// single statistic: `taus` for each, unchanged.
+/// interval tau0_s [s], input of `kind`: the stop ratios count phase points or samples) left out
+/// and noted on stderr (naming `input`); a tau no statistic reaches stays in every list, so
+/// averaging_factors reports it. Non-explicit specs and a single statistic: `taus` for each,
+/// unchanged.
 std::vector<TauSpec> taus_per_statistic(const TauSpec& taus, const std::vector<Statistic>& stats,
                                         std::int64_t n_phase_points, double tau0_s,
-                                        const std::string& input);
+                                        DataKind kind, const std::string& input);
 
 /// Stream mode: the same note from the curves (the length is known only at the end), for the
 /// asked taus missing from a statistic's curve; Error for an asked tau in no curve. rate_hz [Hz].

@@ -55,6 +55,7 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   options.convention = parse_density_convention(args.convention);
   options.bias_model = parse_bias_model(args.bias_model);
   options.threads = args.threads;
+  options.edf_model = args.edf_model;
   if (args.dynamic) {
     if (args.dynamic_windows < 2) throw Error("--dynamic-windows must be >= 2");
     options.dynamic_windows = args.dynamic_windows;

@@ -33,6 +33,7 @@ struct ChainArguments {
   unsigned threads = 0;
   bool dynamic = false;
   int dynamic_windows = 8;
+  EdfModel edf_model = EdfModel::greenhall;  ///< of the curves' intervals (set from the data)
 };
 
 /// Adds the chain's options (--stat, --taus, --ci, --spec, -o, ...) to `command`.

@@ -59,6 +59,7 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
   std::vector<BoundedChannel> chosen;
   std::vector<std::string> chosen_names;
   std::vector<ChannelSensor> sensors;
+  std::string left_out;  // channels --gyro / --accel do not name: said, never dropped silently
   for (std::size_t c = 0; c < names.size(); ++c) {
     BoundedChannel channel;
     channel.column = c;
@@ -68,6 +69,7 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
       channel.role = it->second;
       sensor = {it->second, it->second.sensor == Sensor::gyro ? "by --gyro" : "by --accel"};
     } else if (!forced.empty()) {
+      left_out += (left_out.empty() ? "" : ", ") + names[c];
       continue;  // only the named columns
     } else {
       channel.role = classify_channel(channel.name);
@@ -76,6 +78,11 @@ std::vector<BoundedChannel> choose_channels(const std::vector<std::string>& name
     chosen_names.push_back(channel.name);
     sensors.push_back(std::move(sensor));
     chosen.push_back(std::move(channel));
+  }
+  if (notes && !left_out.empty()) {
+    std::cerr << "sigmatau: note: " << args.log.input << ": " << left_out
+              << " not analysed (--gyro / --accel name the channels; --columns chooses what is "
+                 "read)\n";
   }
   const std::vector<ChannelUnit> units = channel_units_of(args.log, chosen_names, sensors, notes);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -205,7 +212,10 @@ void add_analyze_command(CLI::App& app) {
                       "results; stdin and --gaps split/fill are always read into memory")
       ->capture_default_str();
   add_chain_options(*command, args->chain);
-  command->callback([args] { run_analyze(*args); });
+  command->callback([args] {
+    args->chain.edf_model = edf_model_for(args->log);  // discrete for IMU data
+    run_analyze(*args);
+  });
 }
 
 }  // namespace sigmatau::cli

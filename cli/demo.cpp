@@ -184,6 +184,7 @@ void run_demo(const DemoArguments& args) {
   ChainArguments chain = args.chain;
   if (chain.spec.empty()) chain.spec = args.sheet;
   if (chain.trim == "auto") chain.trim = "none";  // a simulated log has no warm-up
+  chain.edf_model = EdfModel::discrete;  // simulated IMU samples: discrete noise
   finish([&](const AnalysisOptions& options) { return run_analysis(std::move(input), options); },
          chain, {{"truth.json", simulation_sidecar_json(config)}}, flicker_taps(config),
          noise.notes);

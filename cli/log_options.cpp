@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -42,10 +44,13 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
   command.add_option("--columns", args.columns,
                      "channels to analyse: header names or 0-based indices, comma-separated "
                      "(default: every numeric column except the time column)");
-  command.add_option("--time-column", args.time_column, "time stamp column (name or index)");
-  command.add_option("--time-unit", args.time_unit, "unit of the time column: s|ms|us|ns")
-      ->capture_default_str();
-  command.add_option("--rate", args.rate_hz,
+  command.add_option("--time-column", args.time_column,
+                     "time stamp column (name or index; default: the column named t, time or "
+                     "timestamp, any case, e.g. t_ms or Timestamp_ns)");
+  command.add_option("--time-unit", args.time_unit,
+                     "unit of the time column: s|ms|us|ns|min|h|d (d: days, e.g. MJD; default: "
+                     "the unit suffix of its name, as in t_ms, else s)");
+  CLI::Option* const rate = command.add_option("--rate", args.rate_hz,
                      "sample rate [Hz], e.g. 100 or \"100 Hz\" (default: measured from the time column)")
       ->transform(
           [](const std::string& text) {
@@ -57,7 +62,7 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
             return std::string(hz);
           },
           "", "Hz");
-  command.add_option("--kind", args.kind,
+  CLI::Option* const kind = command.add_option("--kind", args.kind,
                      "what the values are: rate (e.g. deg/s, m/s^2), increment (delta angle or "
                      "velocity per sample), phase (integrated angle, or clock phase in s)")
       ->capture_default_str();
@@ -74,7 +79,9 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
                      "segments apart and combine them), fill (linear interpolation), report "
                      "(only count them and analyse the log as if contiguous)")
       ->capture_default_str();
-  command.add_option("--nonfinite", args.nonfinite, "NaN/Inf values: error (default) or skip the row")
+  command.add_option("--nonfinite", args.nonfinite,
+                     "NaN/Inf, or a field that is not a number in a data column: error (default; "
+                     "the message names the file, line and column) or skip the row")
       ->capture_default_str();
   command.add_option("--topic", args.topic,
                      "ROS bag: the sensor_msgs/Imu topic to read (default: the bag's only Imu "
@@ -90,6 +97,9 @@ std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args)
                      "summary, the file ends inside a record): error (default; the message says "
                      "where and how many messages precede the cut) or use (analyse the complete "
                      "messages before the cut, with a note)");
+  command.parse_complete_callback([&args, kind, rate] {
+    apply_file_header(args, kind->count() > 0, rate->count() > 0);
+  });
   std::vector<CLI::Option*> added;
   const std::vector<CLI::Option*> all = command.get_options();
   for (std::size_t i = options_before; i < all.size(); ++i) {
@@ -111,11 +121,11 @@ LogOptions log_options_from(const LogArguments& args) {
   options.path = args.input;
   if (!args.columns.empty()) options.columns = split_list(args.columns, "--columns");
   options.time_column = args.time_column;
-  options.time_unit = parse_time_unit(args.time_unit);
+  if (!args.time_unit.empty()) options.time_unit = parse_time_unit(args.time_unit);
   options.gaps = parse_gap_policy(args.gaps);
   options.nonfinite = parse_nonfinite_policy(args.nonfinite);
   if (is_bag_path(args.input)) {
-    if (!args.time_column.empty() || args.time_unit != "s") {
+    if (!args.time_column.empty() || !args.time_unit.empty()) {
       throw Error(args.input + ": --time-column and --time-unit are for text logs; a ROS bag has "
                                "its own stamps (choose with --stamp header|receive)");
     }
@@ -150,6 +160,8 @@ LogOptions log_options_from(const LogArguments& args) {
     options.skip_bytes = args.skip_bytes;
   } else if (args.channels != 0 || args.big_endian || args.skip_bytes != 0) {
     throw Error("--channels, --big-endian and --skip-bytes are for --binary input");
+  } else {
+    options.find_time_column = true;  // a text log: the column named t, time or timestamp
   }
   return options;
 }
@@ -202,6 +214,99 @@ void note_truncation(const std::string& input, const TimingReport& timing) {
 
 }  // namespace
 
+namespace {
+
+const char* time_unit_name(TimeUnit unit) {
+  switch (unit) {
+    case TimeUnit::s: return "s";
+    case TimeUnit::ms: return "ms";
+    case TimeUnit::us: return "us";
+    case TimeUnit::ns: return "ns";
+    case TimeUnit::min: return "min";
+    case TimeUnit::h: return "h";
+    case TimeUnit::d: return "d";
+  }
+  return "s";
+}
+
+}  // namespace
+
+void note_header(const std::string& input, const TextHeader& header) {
+  if (!header.time_column_found.empty()) {
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: time column \"%s\" found by its name (stamps in %s%s; "
+                 "--time-column names another, --time-unit sets the unit)\n",
+                 input.c_str(), header.time_column_found.c_str(), time_unit_name(header.time_unit),
+                 header.time_unit_from_name ? ", from its name" : "");
+  }
+  if (!header.time_column_not_increasing.empty()) {
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: column \"%s\" is named like time stamps but its values do "
+                 "not increase: it is read as a channel, not as the time column (--time-column "
+                 "makes it one)\n",
+                 input.c_str(), header.time_column_not_increasing.c_str());
+  }
+  for (const TextColumn& t : header.text_columns) {
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: column \"%s\" holds text, not numbers (line %lld: \"%s\"), "
+                 "and is not analysed (--columns chooses the columns)\n",
+                 input.c_str(), t.name.c_str(), static_cast<long long>(t.line),
+                 t.first_field.c_str());
+  }
+  if (!header.time_tag_column.empty()) {
+    std::fprintf(stderr,
+                 "sigmatau: note: %s: a Stable32 data file: column %s holds its time tags, which "
+                 "are not analysed (as in Stable32; --columns or --time-column to use them)\n",
+                 input.c_str(), header.time_tag_column.c_str());
+  }
+}
+
+void apply_file_header(LogArguments& args, bool kind_given, bool rate_given) {
+  if (args.input.empty() || args.input == "-" || !args.binary.empty() || is_bag_path(args.input)) {
+    return;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(args.input, ec)) return;
+  TextHeader header;
+  bool has_time = false;
+  try {
+    const LogReader reader(log_options_from(args));
+    header = reader.timing().header;
+    has_time = reader.has_time();
+  } catch (const std::exception&) {
+    return;  // the verb's own read says what is wrong
+  }
+  if (args.time_column.empty()) args.time_column_found = header.time_column_found;
+  if (!header.declared_type.empty()) {
+    const std::string kind = header.declared_type == "phase" ? "phase" : "rate";
+    if (!kind_given) {
+      args.kind = kind;
+      std::fprintf(stderr,
+                   "sigmatau: note: %s: its header declares %s data (Type:): read as --kind %s\n",
+                   args.input.c_str(), header.declared_type.c_str(), kind.c_str());
+    } else if (args.kind != kind) {
+      std::fprintf(stderr,
+                   "sigmatau: warning: %s: its header declares %s data (Type:), but --kind %s "
+                   "is given\n",
+                   args.input.c_str(), header.declared_type.c_str(), args.kind.c_str());
+    }
+  }
+  if (header.declared_tau_s > 0 && !has_time) {
+    const double rate_hz = 1.0 / header.declared_tau_s;
+    if (!rate_given) {
+      args.rate_hz = rate_hz;
+      std::fprintf(stderr,
+                   "sigmatau: note: %s: its header declares Tau %.10g s: read at --rate %.10g Hz\n",
+                   args.input.c_str(), header.declared_tau_s, rate_hz);
+    } else if (std::abs(*args.rate_hz / rate_hz - 1) > 1e-9) {
+      std::fprintf(stderr,
+                   "sigmatau: warning: %s: its header declares Tau %.10g s (%.10g Hz), but --rate "
+                   "%.10g Hz is given\n",
+                   args.input.c_str(), header.declared_tau_s, rate_hz, *args.rate_hz);
+    }
+  }
+}
+
 double quantity_option(const std::string& text, const Dimension& d, const char* option,
                        const char* bare_unit) {
   char* end = nullptr;
@@ -211,6 +316,7 @@ double quantity_option(const std::string& text, const Dimension& d, const char* 
 }
 
 void note_reading(const LogArguments& args, const LogOptions& options, const TimingReport& timing) {
+  note_header(args.input, timing.header);
   note_topic_choice(args.input, timing);
   note_reordering(args.input, timing, options.reorder_window);
   note_truncation(args.input, timing);
@@ -219,8 +325,8 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
   }
   if (timing.rows_skipped_nonfinite > 0) {
     std::fprintf(stderr,
-                 "sigmatau: note: %s: %lld row%s with a non-finite value skipped (--nonfinite "
-                 "skip)\n",
+                 "sigmatau: note: %s: %lld row%s with a non-finite or non-numeric value skipped "
+                 "(--nonfinite skip)\n",
                  args.input.c_str(), static_cast<long long>(timing.rows_skipped_nonfinite),
                  timing.rows_skipped_nonfinite == 1 ? "" : "s");
   }
@@ -256,7 +362,8 @@ void note_reading(const LogArguments& args, const LogOptions& options, const Tim
                    args.input.c_str(), *args.rate_hz, timing.rate_hz);
     }
     // Stamps in ms or us read as seconds give a rate far below any IMU's.
-    if (!args.rate_hz && args.time_unit == "s" && timing.rate_hz < 1) {
+    if (!args.rate_hz && (args.time_unit.empty() || args.time_unit == "s") &&
+        !timing.header.time_unit_from_name && timing.rate_hz < 1) {
       std::fprintf(stderr,
                    "sigmatau: note: %s: the time stamps, read in seconds, measure %.6g Hz; if "
                    "they are in ms, us or ns, give --time-unit\n",
@@ -308,6 +415,22 @@ void set_input_unit(const LogArguments& args, LoadedChannels& loaded) {
   // own factor (deviations and densities scale with the unit; noise identification and EDF do
   // not depend on it).
   if (per_channel_units(args)) loaded.to_si = 1;
+}
+
+EdfModel edf_model_for(const LogArguments& args) {
+  const DataKind kind = parse_data_kind(args.kind);
+  // Units known from the data (a bag: rad/s and m/s^2) or named per sensor are IMU units.
+  if (is_bag_path(args.input) || !args.gyro_unit.empty() || !args.accel_unit.empty()) {
+    return default_edf_model(kind, sensor_unit_dimension(true, kind));
+  }
+  if (args.unit.empty()) return EdfModel::greenhall;  // unknown: as Stable32
+  return default_edf_model(kind, parse_unit(args.unit).dimension);
+}
+
+std::string edf_model_name(const std::string& given, const LogArguments& args, bool stream) {
+  if (!given.empty()) return given;
+  if (stream) return "greenhall";
+  return edf_model_for(args) == EdfModel::discrete ? "discrete" : "greenhall";
 }
 
 LoadedChannels load_channels(const LogArguments& args) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sigmatau/confidence.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/noise_model.hpp"
 #include "sigmatau/phase_series.hpp"
@@ -18,7 +19,7 @@ struct LogArguments {
   std::string input;
   std::string columns;       // comma-separated names or indices
   std::string time_column;
-  std::string time_unit = "s";
+  std::string time_unit;     // s|ms|us|ns|min|h|d; empty: the time column's name suffix, else s
   std::optional<double> rate_hz;
   std::string kind = "rate";
   std::string unit;          // input unit; empty: numbers are taken as they are
@@ -36,11 +37,25 @@ struct LogArguments {
   // Per sensor, instead of --unit (add_sensor_unit_options: adev, psd, fit, analyze, calibrate).
   std::string gyro_unit;   // unit of the columns named as gyro axes (classify_channel)
   std::string accel_unit;  // unit of the columns named as accelerometer axes
+  // Found in the file's header once the command line is parsed (apply_file_header), not options:
+  std::string time_column_found;  // the time column found by its name ("" when none or given)
 };
 
 /// Adds INPUT and the log options to `command`; returns the log options (all but INPUT), so a
-/// verb can tell which were given (given_option_names).
+/// verb can tell which were given (given_option_names). Once the command line is parsed, the
+/// file's header is looked at (apply_file_header).
 std::vector<CLI::Option*> add_log_options(CLI::App& command, LogArguments& args);
+
+/// What a text log file's header says, applied before any verb reads it: a Stable32 data file's
+/// declared Type (phase or frequency) becomes --kind and its Tau --rate where those were not
+/// given (a note on stderr says so; a contradicting --kind or --rate is warned about), and the
+/// time column found by its name is recorded in args.time_column_found. Nothing for stdin, a
+/// bag, raw binary, or a file that cannot be read (the verb's own read reports that).
+void apply_file_header(LogArguments& args, bool kind_given, bool rate_given);
+
+/// The notes on stderr about what a text log's header told the reader: the time column found by
+/// name, the text columns left out, a Stable32 file's time tags left out (note_reading calls it).
+void note_header(const std::string& input, const TextHeader& header);
 
 /// A time or rate option: "100 s", "100s", "2 min", "200 Hz", or a bare number in `bare_unit`;
 /// in SI. Throws UnitError naming `option` on another dimension or a malformed text.
@@ -116,6 +131,16 @@ class Progress {
   double start_s_;
   double last_s_ = -1;
 };
+
+/// The EDF model for the log's data (default_edf_model): EdfModel::discrete for IMU data (a ROS
+/// bag, --gyro-unit / --accel-unit, a --unit of an angular rate or acceleration, of an angle or
+/// velocity with --kind increment or phase, or raw counts), EdfModel::greenhall for clock data
+/// and values without a unit.
+EdfModel edf_model_for(const LogArguments& args);
+
+/// adev's --edf: `given` when set, else edf_model_for's ("discrete" or "greenhall"); always
+/// "greenhall" by default in stream mode (`stream`), whose strided EDF follows Greenhall's.
+std::string edf_model_name(const std::string& given, const LogArguments& args, bool stream);
 
 /// Splits "a,b,c" (empty fields are an Error naming the option).
 std::vector<std::string> split_list(const std::string& text, const std::string& option);

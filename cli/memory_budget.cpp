@@ -76,7 +76,8 @@ std::int64_t estimated_values(const LogArguments& log, std::int64_t enough_value
 }
 
 bool exact_needs_out_of_core(const LogArguments& log, std::int64_t memory_bytes) {
-  const bool has_time = !log.time_column.empty() || is_bag_path(log.input);
+  const bool has_time =
+      !log.time_column.empty() || !log.time_column_found.empty() || is_bag_path(log.input);
   if (has_time && (log.gaps == "split" || log.gaps == "fill")) return false;
   const std::int64_t fit = memory_bytes / kExactBytesPerSample;
   const std::int64_t values = estimated_values(log, fit);

@@ -5,6 +5,7 @@
 // REFERENCE.md. Confidence-interval columns are not checked here (see the confidence tests).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "sigmatau/allan.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/phase_series.hpp"
+#include "sigmatau/taus.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -362,4 +364,101 @@ TEST_CASE("Sr87 optical clock: frequency, phase and normalised phase; octave, de
     tables += check_directory(phase0, dir / "phase0" / grid, default_tolerance).tables;
   }
   CHECK(tables == 3 * 3 * 7);
+}
+
+namespace {
+
+/// TOTVAR by its definition (NIST SP 1065 eq. 25 with the reflections of sec. 5.2.11), in long
+/// double, from the raw phase x[0..N): 1/(2 tau^2 (N-2)) sum_{i=1}^{N-2} (x*[i-m] - 2x[i] +
+/// x*[i+m])^2, x*[-j] = 2x[0] - x[j], x*[N-1+j] = 2x[N-1] - x[N-1-j].
+double brute_force_totdev(const std::vector<double>& x, std::int64_t m, double tau0_s) {
+  const auto N = static_cast<std::int64_t>(x.size());
+  const auto at = [&](std::int64_t k) -> long double {
+    if (k < 0) return 2.0L * x[0] - x[static_cast<std::size_t>(-k)];
+    if (k > N - 1) return 2.0L * x[static_cast<std::size_t>(N - 1)] -
+                          x[static_cast<std::size_t>(2 * (N - 1) - k)];
+    return x[static_cast<std::size_t>(k)];
+  };
+  long double sum = 0;
+  for (std::int64_t i = 1; i <= N - 2; ++i) {
+    const long double d = at(i - m) - 2 * at(i) + at(i + m);
+    sum += d * d;
+  }
+  const long double tau = static_cast<long double>(m) * tau0_s;
+  return static_cast<double>(std::sqrt(sum / (2 * tau * tau * static_cast<long double>(N - 2))));
+}
+
+}  // namespace
+
+TEST_CASE("Stable32's stop ratios count data points: N phase points reach N/4 and N/2") {
+  // Stable32 (and allantoolkit's tau_generator) stop a run at (data points) / ratio, the data
+  // points being what was given: N phase points, or M = N - 1 frequency values. An 8192-point
+  // phase record therefore reaches OADEV/MDEV/TDEV/OHDEV at m = 2048, ADEV/HDEV at 1638 and
+  // TOTDEV at 4096; 8192 frequency values (8193 phase points) the same m.
+  const std::int64_t N = 8192;
+  using V = std::vector<std::int64_t>;
+  const TauSpec octave = parse_tau_spec("octave");
+  for (const DataKind kind : {DataKind::phase, DataKind::rate, DataKind::increment}) {
+    const std::int64_t points = kind == DataKind::phase ? N : N + 1;
+    INFO(to_string(kind) << " input, " << points << " phase points");
+    for (const Statistic s : {Statistic::oadev, Statistic::mdev, Statistic::tdev,
+                              Statistic::ohdev}) {
+      CHECK(max_averaging_factor(s, points, kind) == 2048);
+      CHECK(averaging_factors(octave, s, points, 1.0, kind).back() == 2048);
+    }
+    CHECK(max_averaging_factor(Statistic::adev, points, kind) == 1638);
+    CHECK(max_averaging_factor(Statistic::hdev, points, kind) == 1638);
+    CHECK(max_averaging_factor(Statistic::totdev, points, kind) == 4096);
+    CHECK(averaging_factors(octave, Statistic::totdev, points, 1.0, kind).back() == 4096);
+    CHECK(averaging_factors(parse_tau_spec("2048"), Statistic::oadev, points, 1.0, kind) ==
+          V{2048});
+    CHECK(averaging_factors(parse_tau_spec("4096"), Statistic::totdev, points, 1.0, kind) ==
+          V{4096});
+    CHECK_THROWS_WITH_AS(averaging_factors(parse_tau_spec("2049"), Statistic::oadev, points, 1.0,
+                                           kind),
+                         doctest::Contains("the longest is 2048 s"), Error);
+  }
+  // Every limit has terms, for every length and kind (the term counts are the estimators').
+  for (const DataKind kind : {DataKind::phase, DataKind::rate}) {
+    for (const Statistic s : {Statistic::adev, Statistic::oadev, Statistic::mdev,
+                              Statistic::tdev, Statistic::hdev, Statistic::ohdev,
+                              Statistic::totdev}) {
+      for (std::int64_t n = 0; n < 70; ++n) {
+        const std::int64_t max_m = max_averaging_factor(s, n, kind);
+        INFO(to_string(s) << " " << to_string(kind) << " N=" << n);
+        if (max_m > 0) CHECK(term_count(s, max_m, n) >= 1);
+        if (max_m == 0) CHECK(term_count(s, 1, n) == 0);
+      }
+    }
+  }
+  // The last octave is computed: OADEV at N/4 and TOTDEV at N/2 (all of whose terms reach past
+  // an end) equal their definitions.
+  std::vector<double> x(static_cast<std::size_t>(N));
+  std::uint64_t state = 12345;
+  double walk = 0;
+  for (auto& v : x) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    walk += static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;  // white FM: a random walk
+    v = walk;
+  }
+  const auto series = PhaseSeries::from_phase(x, 1.0);
+  const auto totdev = compute_deviation(
+      series, Statistic::totdev,
+      averaging_factors(octave, Statistic::totdev, N, 1.0, DataKind::phase));
+  REQUIRE(!totdev.empty());
+  CHECK(totdev.back().m == 4096);
+  CHECK(totdev.back().n_terms == N - 2);
+  for (const std::int64_t m : {std::int64_t{1}, std::int64_t{1000}, std::int64_t{4095},
+                               std::int64_t{4096}}) {
+    INFO("TOTDEV m = " << m);
+    const auto p = compute_deviation(series, Statistic::totdev, std::vector<std::int64_t>{m});
+    REQUIRE(p.size() == 1);
+    // Double-double sums against long double: agreement to 1e-12 (a loss of precision in the
+    // reflected terms would show at 1e-8 or worse).
+    CHECK(p[0].dev == test::rel(brute_force_totdev(x, m, 1.0), 1e-12));
+  }
+  const auto oadev = compute_deviation(
+      series, Statistic::oadev, averaging_factors(octave, Statistic::oadev, N, 1.0, DataKind::phase));
+  CHECK(oadev.back().m == 2048);
+  CHECK(oadev.back().n_terms == N - 2 * 2048);
 }

@@ -161,11 +161,11 @@ TEST_CASE("equivalent_dof maps each statistic to Greenhall's (d, F, S) or SP 106
   CHECK(equivalent_dof(Statistic::tdev, 0, m, N) == greenhall_edf(0, 2, m, 1, m, N));
   CHECK(equivalent_dof(Statistic::hdev, 0, m, N) == greenhall_edf(0, 3, m, m, 1, N));
   CHECK(equivalent_dof(Statistic::ohdev, 0, m, N) == greenhall_edf(0, 3, m, m, m, N));
-  // SP 1065 Table 7: b N/m - c with (1.50, 0), (1.17, 0.22), (0.93, 0.36); exact arithmetic, so
-  // only rounding (1e-12).
+  // SP 1065 Table 7: b N/m - c with Howe's three digits (1.500, 0), (1.168, 0.222), (0.927,
+  // 0.358), as Stable32 (test_confidence_reference.cpp); exact arithmetic, so only rounding.
   SIGMATAU_CHECK_REL(equivalent_dof(Statistic::totdev, 0, m, N), 1.50 * N / m, 1e-12);
-  SIGMATAU_CHECK_REL(equivalent_dof(Statistic::totdev, -1, m, N), 1.17 * N / m - 0.22, 1e-12);
-  SIGMATAU_CHECK_REL(equivalent_dof(Statistic::totdev, -2, m, N), 0.93 * N / m - 0.36, 1e-12);
+  SIGMATAU_CHECK_REL(equivalent_dof(Statistic::totdev, -1, m, N), 1.168 * N / m - 0.222, 1e-12);
+  SIGMATAU_CHECK_REL(equivalent_dof(Statistic::totdev, -2, m, N), 0.927 * N / m - 0.358, 1e-12);
 }
 
 TEST_CASE("chi-squared interval uses exact quantiles (SP 1065 eq. 45)") {

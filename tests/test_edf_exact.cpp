@@ -279,3 +279,20 @@ TEST_CASE("equivalent_dof with EdfModel: Greenhall by default, discrete where Gr
   CHECK(equivalent_dof(Statistic::totdev, 0, 4, 1000, EdfModel::discrete) ==
         equivalent_dof(Statistic::totdev, 0, 4, 1000));
 }
+
+TEST_CASE("default_edf_model: discrete for sampled inertial sensors, Greenhall for clocks") {
+  // IMU units per kind: rates for rate input, per-sample amounts for increments and phase.
+  CHECK(default_edf_model(DataKind::rate, dim::angular_rate) == EdfModel::discrete);
+  CHECK(default_edf_model(DataKind::rate, dim::acceleration) == EdfModel::discrete);
+  CHECK(default_edf_model(DataKind::increment, dim::angle) == EdfModel::discrete);
+  CHECK(default_edf_model(DataKind::increment, dim::velocity) == EdfModel::discrete);
+  CHECK(default_edf_model(DataKind::phase, dim::angle) == EdfModel::discrete);
+  CHECK(default_edf_model(DataKind::rate, dim::counts) == EdfModel::discrete);
+  // Clock data as Stable32 prints it: fractional frequency (dimensionless), phase in s; and
+  // values of unknown unit.
+  CHECK(default_edf_model(DataKind::rate, dim::dimensionless) == EdfModel::greenhall);
+  CHECK(default_edf_model(DataKind::phase, dim::time) == EdfModel::greenhall);
+  // A unit that does not fit the kind is not taken as an IMU's (the CLI refuses it anyway).
+  CHECK(default_edf_model(DataKind::rate, dim::angle) == EdfModel::greenhall);
+  CHECK(default_edf_model(DataKind::increment, dim::angular_rate) == EdfModel::greenhall);
+}

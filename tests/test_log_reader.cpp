@@ -702,3 +702,244 @@ TEST_CASE("every file of the bad-input catalogue fails with its line, column and
     if (name != "README.md") CHECK(listed.count(name) == 1);
   }
 }
+
+// ---- Clock files, time columns found by name, and columns never dropped silently (issue 28) --
+
+namespace {
+
+/// `rows` rows "t,<a>,<b>" at 100 Hz with values that are plain numbers, except `first_a` as
+/// the first row's <a> field.
+std::string two_channel_csv(const std::string& header, const std::string& first_a, int rows,
+                            char delimiter = ',') {
+  std::string text = header + "\n";
+  for (int i = 0; i < rows; ++i) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%.2f%c%s%c%.3f\n", i * 0.01, delimiter,
+                  i == 0 ? first_a.c_str() : std::to_string(0.5 + 0.001 * i).c_str(), delimiter,
+                  0.25 + 0.002 * i);
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("a preamble of Key: value lines is skipped; a Stable32 file's Type and Tau are read") {
+  SUBCASE("Stable32's ACF output: File:, Date:, Points: lines before the data") {
+    // Used to be ":2:3: expected 2 fields, found 3" ("File: AUTO.DAT" taken as the header).
+    TempFile f("File: AUTO.DAT\nDate: 01/01/21 15:34:21\nPoints: 3\n0 9.99e-01\n1 7.1e-01\n"
+               "2 5.0e-01\n",
+               ".dat");
+    const Log log = read_log(text_options(f.path()));
+    CHECK(log.channel_names == std::vector<std::string>{"c0", "c1"});
+    REQUIRE(log.channels[1].size() == 3);
+    CHECK(log.channels[1][2] == 5.0e-01);
+    CHECK(log.timing.header.declared_type.empty());
+  }
+  SUBCASE("a Stable32 phase file: # Type, # Tau and # Header End") {
+    TempFile f("#Type: Phase\n#Points: 3\n#Tau: 2.500000e+00\n#Tag Scale: 8.640000e+04\n"
+               "# Header End\n0.0\n8.5e-02\n-2.2e-01\n",
+               ".dat");
+    const Log log = read_log(text_options(f.path()));
+    CHECK(log.timing.header.declared_type == "phase");
+    CHECK(log.timing.header.declared_tau_s == 2.5);
+    CHECK(log.channel_names == std::vector<std::string>{"c0"});
+    CHECK(log.timing.header.time_tag_column.empty());
+  }
+  SUBCASE("the same declarations without '#', and Type: Freq") {
+    TempFile f("Type: Freq\nTau: 1.0e+01\n1e-12\n2e-12\n", ".dat");
+    const Log log = read_log(text_options(f.path()));
+    CHECK(log.timing.header.declared_type == "frequency");
+    CHECK(log.timing.header.declared_tau_s == 10.0);
+    CHECK(log.channels[0].size() == 2);
+  }
+  SUBCASE("a Stable32 file of time tags and values: the tags are left out, as Stable32 does") {
+    TempFile f("# Type: Freq\n# Points: 3\n# Tau: 2.500000e+00\n# Header End\n"
+               "3.661957841370000e+09 8.768489e-17\n3.661957842680000e+09 9.874540e-17\n"
+               "3.661957849260000e+09 7.519143e-17\n",
+               ".txt");
+    const Log log = read_log(text_options(f.path()));
+    CHECK(log.channel_names == std::vector<std::string>{"c1"});
+    CHECK(log.timing.header.time_tag_column == "c0");
+    REQUIRE(log.channels.size() == 1);
+    CHECK(log.channels[0][1] == 9.874540e-17);
+    // Columns named by the caller are taken as asked.
+    LogOptions both = text_options(f.path());
+    both.columns = {"0", "1"};
+    CHECK(read_log(both).channels.size() == 2);
+  }
+  SUBCASE("the reference data's Stable32 files") {
+    if (!test::has_reference_data("allantoolkit/Sr87/freq/freq_data.txt")) return;
+    const auto dir = test::reference_data_dir() / "allantoolkit";
+    const Log freq = read_log(text_options((dir / "Sr87/freq/freq_data.txt").string()));
+    CHECK(freq.timing.header.declared_type == "frequency");
+    CHECK(freq.timing.header.declared_tau_s == 2.5);
+    CHECK(freq.channels.size() == 1);
+    CHECK(freq.channels[0].size() == 1252);
+    const Log acf = read_log(text_options((dir / "Sr87/AUTO.DAT").string()));
+    CHECK(acf.channels[1].size() == 626);
+    const Log phase = read_log(text_options((dir / "phasedat_stable32_1.61/PHASE.DAT").string()));
+    CHECK(phase.timing.header.declared_type == "phase");
+    CHECK(phase.channels[0].size() == 1001);
+  }
+}
+
+TEST_CASE("a time column is found by its name, its suffix giving the unit") {
+  const auto found = [](const std::string& content, const LogOptions& base = {}) {
+    TempFile f(content, ".csv");
+    LogOptions o = base;
+    o.path = f.path();
+    o.find_time_column = true;
+    return read_log(o);
+  };
+  SUBCASE("t, Time, TIMESTAMP: seconds") {
+    for (const char* name : {"t", "Time", "TIMESTAMP", "time (s)", "t_sec"}) {
+      INFO(name);
+      const Log log = found(std::string(name) + ",gx\n0,1\n0.01,2\n0.02,3\n");
+      CHECK(log.timing.has_time);
+      CHECK(log.timing.rate_hz == rel(100, 1e-9));
+      CHECK(log.channel_names == std::vector<std::string>{"gx"});
+      CHECK(log.timing.header.time_column_found == name);
+    }
+  }
+  SUBCASE("unit suffixes: _ms, _us, _ns, [ms], _min, _h, _d, _mjd") {
+    const std::pair<const char*, std::string> cases[] = {
+        {"t_ms", "0,1\n10,2\n20,3\n"},
+        {"time_us", "0,1\n10000,2\n20000,3\n"},
+        {"Timestamp_ns", "1700000000000000000,1\n1700000000010000000,2\n1700000000020000000,3\n"},
+        {"time [ms]", "0,1\n10,2\n20,3\n"},
+    };
+    for (const auto& [name, rows] : cases) {
+      INFO(name);
+      const Log log = found(std::string(name) + ",gx\n" + rows);
+      CHECK(log.timing.rate_hz == rel(100, 1e-9));
+      CHECK(log.timing.header.time_unit_from_name);
+    }
+    // Minutes, hours and days (an MJD column): 0.5 min, 0.25 h, 0.5 d between stamps.
+    CHECK(found("t_min,gx\n0,1\n0.5,2\n1.0,3\n").timing.mean_interval_s == rel(30, 1e-12));
+    CHECK(found("t_h,gx\n0,1\n0.25,2\n0.5,3\n").timing.mean_interval_s == rel(900, 1e-12));
+    const Log mjd = found("t_mjd,y\n60000.0,1e-12\n60000.5,2e-12\n60001.0,3e-12\n");
+    CHECK(mjd.timing.mean_interval_s == rel(43200, 1e-12));
+    CHECK(mjd.timing.header.time_unit == TimeUnit::d);
+  }
+  SUBCASE("an explicit unit wins over the suffix") {
+    LogOptions o;
+    o.time_unit = TimeUnit::s;
+    const Log log = found("t_ms,gx\n0,1\n10,2\n20,3\n", o);
+    CHECK(log.timing.rate_hz == rel(0.1, 1e-9));
+    CHECK_FALSE(log.timing.header.time_unit_from_name);
+  }
+  SUBCASE("the suffix also sets the unit of a column named explicitly") {
+    TempFile f("t_ns,gx\n0,1\n10000000,2\n20000000,3\n", ".csv");
+    LogOptions o = text_options(f.path());
+    o.time_column = "t_ns";
+    CHECK(read_log(o).timing.rate_hz == rel(100, 1e-9));
+  }
+  SUBCASE("not a time column: other names, a column asked for, no header, not enabled") {
+    for (const char* name : {"t_sensor", "time_offset", "tx", "dt", "stamp"}) {
+      INFO(name);
+      const Log log = found(std::string(name) + ",gx\n0,1\n0.01,2\n0.02,3\n");
+      CHECK_FALSE(log.timing.has_time);
+      CHECK(log.channels.size() == 2);
+    }
+    LogOptions asked;
+    asked.columns = {"t", "gx"};
+    CHECK_FALSE(found("t,gx\n0,1\n0.01,2\n", asked).timing.has_time);
+    CHECK_FALSE(found("0,1\n0.01,2\n").timing.has_time);
+    TempFile f("t,gx\n0,1\n0.01,2\n", ".csv");
+    CHECK_FALSE(read_log(text_options(f.path())).timing.has_time);  // the library default
+  }
+  SUBCASE("a column named T whose values go up and down is a channel (a temperature)") {
+    const Log log = found("T,gx\n25.1,1\n25.0,2\n25.1,3\n25.1,4\n25.0,5\n25.2,6\n");
+    CHECK_FALSE(log.timing.has_time);
+    CHECK(log.channel_names == std::vector<std::string>{"T", "gx"});
+    CHECK(log.timing.header.time_column_not_increasing == "T");
+  }
+  SUBCASE("t beside a temperature named T: t is the time column") {
+    const Log log = found("t,T,gx\n0,25.1,1\n0.01,25.0,2\n0.02,25.1,3\n0.03,25.1,4\n");
+    CHECK(log.timing.header.time_column_found == "t");
+    CHECK(log.timing.header.time_column_not_increasing == "T");
+    CHECK(log.channel_names == std::vector<std::string>{"T", "gx"});
+    CHECK(log.timing.rate_hz == rel(100, 1e-9));
+  }
+  SUBCASE("two increasing time columns by name are an error naming both") {
+    TempFile f("t,timestamp_ns,gx\n0,0,1\n0.01,10000000,2\n", ".csv");
+    LogOptions o = text_options(f.path());
+    o.find_time_column = true;
+    CHECK_THROWS_WITH_AS(read_log(o),
+                         doctest::Contains(":1: columns \"t\" and \"timestamp_ns\" are both named"),
+                         ParseError);
+  }
+}
+
+TEST_CASE("parse_time_unit reads minutes, hours and days") {
+  CHECK(parse_time_unit("min") == TimeUnit::min);
+  CHECK(parse_time_unit("h") == TimeUnit::h);
+  CHECK(parse_time_unit("d") == TimeUnit::d);
+  CHECK_THROWS_WITH_AS(parse_time_unit("day"), doctest::Contains("expected s, ms, us, ns, min, h or d"),
+                       Error);
+  // A column named explicitly, in days.
+  TempFile f("mjd,y\n60000,1e-12\n60000.25,2e-12\n60000.5,3e-12\n", ".csv");
+  LogOptions o = text_options(f.path());
+  o.time_column = "mjd";
+  o.time_unit = TimeUnit::d;
+  CHECK(read_log(o).timing.mean_interval_s == rel(21600, 1e-12));
+}
+
+TEST_CASE("a data column is never dropped silently") {
+  SUBCASE("a typo in the first data row of a numeric column: the row is an error") {
+    // Used to leave gx out of the channels without a word (its 2999 good rows lost).
+    TempFile f(two_channel_csv("t,gx,gy", "x1.288185", 3000), ".csv");
+    LogOptions o = text_options(f.path());
+    o.time_column = "t";
+    {
+      LogReader reader(o);
+      CHECK(reader.channel_names() == std::vector<std::string>{"gx", "gy"});
+    }
+    CHECK_THROWS_WITH_AS(read_log(o), doctest::Contains(":2:2: expected a number, found \"x1.288185\""),
+                         ParseError);
+    // Under NonFinitePolicy::skip_row the row is dropped and counted, like a NaN.
+    o.nonfinite = NonFinitePolicy::skip_row;
+    const Log log = read_log(o);
+    CHECK(log.channels[0].size() == 2999);
+    CHECK(log.timing.rows_skipped_nonfinite == 1);
+  }
+  SUBCASE("the same with a read buffer of 64 bytes: one more read is looked at") {
+    TempFile f(two_channel_csv("t,gx,gy", "x1.288185", 200), ".csv");
+    LogOptions o = text_options(f.path());
+    o.time_column = "t";
+    o.read_buffer_bytes = 64;
+    CHECK_THROWS_WITH_AS(read_log(o), doctest::Contains(":2:2: expected a number"), ParseError);
+  }
+  SUBCASE("a TSV column written with decimal commas") {
+    std::string text = "t\tgx\tgy\n";
+    for (int i = 0; i < 100; ++i) {
+      text += std::to_string(i) + "\t" + std::to_string(i % 7) + ",5\t" + std::to_string(i % 5) +
+              ".25\n";
+    }
+    TempFile f(text, ".tsv");
+    CHECK_THROWS_WITH_AS(read_log(text_options(f.path())),
+                         doctest::Contains(":2:2: expected a number, found \"0,5\" in column \"gx\": "
+                                           "a decimal comma"),
+                         ParseError);
+  }
+  SUBCASE("a decimal comma further down a numeric column") {
+    TempFile f("t\tgx\n0\t1.5\n1\t1.25\n2\t1,75\n", ".tsv");
+    CHECK_THROWS_WITH_AS(read_log(text_options(f.path())),
+                         doctest::Contains(":4:2: expected a number, found \"1,75\" in column \"gx\""),
+                         ParseError);
+  }
+  SUBCASE("a text column is left out and listed") {
+    std::string text = "t,gx,status\n";
+    for (int i = 0; i < 50; ++i) text += std::to_string(i) + ",1.5," + (i == 7 ? "3" : "OK") + "\n";
+    TempFile f(text, ".csv");
+    const Log log = read_log(text_options(f.path()));
+    CHECK(log.channel_names == std::vector<std::string>{"t", "gx"});
+    REQUIRE(log.timing.header.text_columns.size() == 1);
+    const TextColumn& t = log.timing.header.text_columns.front();
+    CHECK(t.column == 2);
+    CHECK(t.name == "status");
+    CHECK(t.first_field == "OK");
+    CHECK(t.line == 2);
+  }
+}

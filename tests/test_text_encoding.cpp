@@ -102,3 +102,21 @@ TEST_CASE("a header name that is not UTF-8 is read as Windows-1252, said, and fo
                                          "C)"),
                        ParseError);
 }
+
+TEST_CASE("a time column named in Windows-1252 is found by its name, with its unit") {
+  test::TempDir dir("sigmatau_test_text_encoding");
+  const std::string path = dir.file("latin1_time.csv").string();
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "t [\xB5s],gx\n0,1\n10000,2\n20000,3\n";  // µ as the byte 0xB5: "t [µs]"
+  }
+  LogOptions options;
+  options.path = path;
+  options.find_time_column = true;
+  const Log log = read_log(options);
+  REQUIRE(log.channel_names.size() == 1);
+  CHECK(log.channel_names[0] == "gx");
+  REQUIRE(log.t_s.size() == 3);
+  CHECK(log.t_s[2] == 0.02);  // 20000 us
+  CHECK(log.timing.header.time_column_found == "t [\xC2\xB5s]");
+}

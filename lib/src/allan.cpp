@@ -58,9 +58,9 @@ std::int64_t term_count(Statistic statistic, std::int64_t m, std::int64_t n_phas
     case Statistic::tdev: n = N - 3 * m + 1; break;
     case Statistic::hdev: n = (N - 1) / m - 2; break;
     case Statistic::ohdev: n = N - 3 * m; break;
-    // The reflected series would allow m up to N-1, but Stable32 stops at (N-1)/2 and beyond
-    // that most of each window is reflected data: defined only where OADEV is.
-    case Statistic::totdev: n = (2 * m <= N - 1) ? N - 2 : 0; break;
+    // The reflected series would allow m up to N-1, but Stable32 stops at half its data points
+    // (N/2 for phase input) and beyond that most of each window is reflected data.
+    case Statistic::totdev: n = (2 * m <= N) ? N - 2 : 0; break;
   }
   return std::max<std::int64_t>(n, 0);
 }

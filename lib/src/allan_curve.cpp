@@ -53,7 +53,8 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
     throw Error("confidence level must be between 0 and 1 (e.g. 0.683), got " +
                 std::to_string(confidence_level));
   }
-  const auto factors = averaging_factors(taus, statistic, series.size(), series.tau0_s());
+  const auto factors =
+      averaging_factors(taus, statistic, series.size(), series.tau0_s(), series.kind());
   if (factors.empty()) {
     throw Error("the log (" + std::to_string(series.size() - 1) + " samples) is too short for " +
                 std::string(to_string(statistic)) + " at any tau");

@@ -151,7 +151,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
   check_segments(segments);
   const PhaseSeries& longest_segment = segments[longest(segments)];
   const auto factors = averaging_factors(taus, statistic, longest_segment.size(),
-                                         longest_segment.tau0_s());
+                                         longest_segment.tau0_s(), longest_segment.kind());
   if (factors.empty()) {
     throw Error("the longest contiguous segment (" + std::to_string(longest_segment.size() - 1) +
                 " samples) is too short for " + std::string(to_string(statistic)) +

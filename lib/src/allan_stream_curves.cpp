@@ -48,7 +48,7 @@ AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double 
   AllanCurve curve;
   curve.statistic = statistic;
   curve.confidence_level = confidence_level;
-  const std::int64_t max_m = max_averaging_factor(statistic, N);
+  const std::int64_t max_m = max_averaging_factor(statistic, N, totals.kind);
   for (const auto& tau : totals.taus) {
     if (tau.statistic != statistic || tau.m > max_m || tau.terms <= 0) continue;
     const double md = static_cast<double>(tau.m);

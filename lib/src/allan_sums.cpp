@@ -123,7 +123,7 @@ double total_boundary_sum(const PhaseSeries& series, std::int64_t m) {
   const double* h = series.hi().data();
   const double* l = series.lo().data();
   const std::int64_t L = series.size() - 1;
-  SIGMATAU_ASSERT(2 * m <= L, "total variance needs 2m <= N - 1");
+  SIGMATAU_ASSERT(2 * m <= L + 1, "total variance needs 2m <= N");
   DoubleDouble total;
   // Lower end, i = 1..m-1: x*[i-m] = -x[m-i] (x[0] = 0), so
   // x*[i-m] - 2x*[i] + x*[i+m] = W(i, m) - (x[i] + x[m-i]).

@@ -136,7 +136,8 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       channel_segments.push_back(segment_series(c.values, segments, input.kind, 1.0 / input.rate_hz));
     }
     curves = compute_segmented_allan_curves(channel_segments, options.statistics, options.taus,
-                                            options.confidence, options.threads);
+                                            options.confidence, options.threads,
+                                            options.edf_model);
     if (options.dynamic_windows > 0) {
       warnings.push_back("--gaps split: the dynamic Allan windows are taken over the segments "
                          "joined end to end, so a window may span a gap");
@@ -147,7 +148,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       series.push_back(PhaseSeries::from_samples(c.values, input.kind, 1.0 / input.rate_hz));
     }
     curves = compute_allan_curves(series, options.statistics, options.taus, options.confidence,
-                                  options.threads);
+                                  options.threads, options.edf_model);
   }
 
   // PSD and noise density per channel.

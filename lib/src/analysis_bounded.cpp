@@ -262,7 +262,8 @@ AnalysisOutput run_analysis_bounded(const BoundedAnalysisSource& source, Analysi
     detail::for_each_item_parallel((group_end - group) * stats, threads, [&](std::size_t i) {
       const std::size_t c = group + i / stats;
       AllanCurve curve = compute_allan_curve_bounded(*series[i / stats], options.statistics[i % stats],
-                                                     options.taus, options.confidence, source.storage);
+                                                     options.taus, options.confidence, source.storage,
+                                                     options.edf_model);
       std::lock_guard lock(mutex);
       work[c].curves[i % stats] = std::move(curve);
     });

@@ -193,6 +193,7 @@ json results_header(const AnalysisOptions& options) {
   results["schema"] = 1;
   results["created_utc"] = options.created_utc;
   results["confidence"] = options.confidence;
+  results["edf_model"] = options.edf_model == EdfModel::discrete ? "discrete" : "greenhall";
   return results;
 }
 

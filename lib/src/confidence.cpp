@@ -181,8 +181,12 @@ bool identify_by_b1(const PhaseSeries& series, Statistic statistic, std::int64_t
   return true;
 }
 
-/// TOTDEV EDF as Stable32 computes it: NIST SP 1065 Table 7, edf = b N/m - c, for white,
-/// flicker and random-walk FM; for white and flicker PM (not covered by Table 7) the simple
+/// TOTDEV EDF as Stable32 computes it: edf = b N/m - c for white, flicker and random-walk FM with
+/// the three-digit coefficients of D. A. Howe's total-variance work (b = 1.500, 1.168, 0.927;
+/// c = 0, 0.222, 0.358), which NIST SP 1065 Table 7 rounds to two digits (1.17, 0.22; 0.93,
+/// 0.36): the EDF implied by Stable32's printed bounds agrees with the three-digit values within
+/// 8e-4 and is 1.3-3.4e-3 below SP 1065's (tests/test_confidence_reference.cpp). For white and
+/// flicker PM (not covered by Table 7) the simple
 /// overlapping-ADEV formulas of SP 1065 Table 5. The Table 5 choice for alpha > 0 was identified
 /// against Stable32's TOTDEV bounds (ocxo, Keysight and GPS records); Greenhall's OADEV EDF
 /// differs from them by up to 1.6e-3 in the bound at flicker PM.
@@ -195,8 +199,8 @@ double totdev_edf(int alpha, std::int64_t m, std::int64_t n_phase_points) {
       edf = std::exp(std::sqrt(std::log((N - 1) / (2 * md)) * std::log((2 * md + 1) * (N - 1) / 4)));
       break;
     case 0: edf = 1.50 * N / md; break;
-    case -1: edf = 1.17 * N / md - 0.22; break;
-    case -2: edf = 0.93 * N / md - 0.36; break;
+    case -1: edf = 1.168 * N / md - 0.222; break;
+    case -2: edf = 0.927 * N / md - 0.358; break;
     default: break;
   }
   return edf > 0 ? edf : kNaN;
@@ -290,6 +294,14 @@ double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,
     case Statistic::totdev: return totdev_edf(alpha, m, n_phase_points);
   }
   return kNaN;
+}
+
+EdfModel default_edf_model(DataKind kind, const Dimension& unit) {
+  // Increments and phase are per-sample amounts: rad and m/s where rates are rad/s and m/s^2.
+  const bool amount = kind != DataKind::rate;
+  const bool gyro = unit == (amount ? dim::angle : dim::angular_rate);
+  const bool accel = unit == (amount ? dim::velocity : dim::acceleration);
+  return gyro || accel || unit.counts2 != 0 ? EdfModel::discrete : EdfModel::greenhall;
 }
 
 double equivalent_dof(Statistic statistic, int alpha, std::int64_t m,

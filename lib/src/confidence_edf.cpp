@@ -7,7 +7,8 @@
 /// Table values transcribed from the paper as quoted in allantools `ci.py` and allantoolkit
 /// `tables.yml` (both agree); the alpha = +2 rows of Table 2 are the closed forms
 /// a0 = C(4d,2d)/C(2d,d)^2, a1 = d/2 given in the paper.
-/// TOTDEV: NIST SP 1065 (Riley 2008) Table 7, edf = b N/m - c.
+/// TOTDEV (confidence.cpp): edf = b N/m - c, NIST SP 1065 (Riley 2008) Table 7 with Howe's
+/// three-digit b and c.
 ///
 /// Glossary (paper's symbols):
 ///   alpha  exponent of the fractional-frequency PSD S_y(f) ~ f^alpha

@@ -4,10 +4,12 @@
 // Glossary: dt = interval between consecutive time stamps [s]; nominal = median dt of the first
 // kMedianWindow intervals; a gap is dt > kGapFactor * nominal.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "log_internal.hpp"
 #include "sigmatau/error.hpp"
@@ -34,13 +36,6 @@ constexpr std::size_t kMaxListedNames = 20;
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
-/// "c<index>", the name of a column without a header. (Built by append: `"c" + to_string`
-/// trips GCC 12's false -Wrestrict, bug 105329.)
-std::string unnamed_column(std::size_t index) {
-  std::string name(1, 'c');
-  name.append(std::to_string(index));
-  return name;
-}
 bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
 }
@@ -53,6 +48,13 @@ std::string format_seconds_ratio(double r) {
 double rate_hz_of(double nominal_s) { return nominal_s > 0 ? 1.0 / nominal_s : 0.0; }
 
 }  // namespace
+
+std::string unnamed_column(std::size_t index) {
+  // Built by append: `"c" + to_string` trips GCC 12's false -Wrestrict, bug 105329.
+  std::string name(1, 'c');
+  name.append(std::to_string(index));
+  return name;
+}
 
 std::string format_seconds(double s) {
   const double a = std::abs(s);
@@ -100,6 +102,10 @@ std::optional<double> to_number(std::string_view field) {
   return std::nullopt;
 }
 
+std::string shown_name(std::string_view raw) {
+  return is_utf8(raw) ? std::string(raw) : utf8_from_windows1252(raw);
+}
+
 std::string quote_field(std::string_view field) {
   std::string out = "\"";
   out.append(escape_non_utf8(field.substr(0, kMaxQuotedField)));
@@ -136,6 +142,41 @@ std::string header_hint(const std::vector<std::string>& names) {
 
 }  // namespace
 
+TimeColumnName time_column_name(std::string_view name) {
+  std::string n(trim_field(name));
+  for (char& ch : n) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  std::string base = n;
+  std::string suffix;
+  bool has_suffix = false;
+  if (!n.empty() && (n.back() == ']' || n.back() == ')')) {
+    // "time [ms]", "t(s)"
+    const std::size_t open = n.find_last_of(n.back() == ']' ? '[' : '(');
+    if (open == std::string::npos) return {};
+    suffix = n.substr(open + 1, n.size() - open - 2);
+    base = n.substr(0, open);
+    has_suffix = true;
+  } else if (const std::size_t sep = n.find_last_of("_ -"); sep != std::string::npos) {
+    suffix = n.substr(sep + 1);  // "t_ms", "timestamp ns", "time-us"
+    base = n.substr(0, sep);
+    has_suffix = true;
+  }
+  while (!base.empty() && (base.back() == ' ' || base.back() == '_' || base.back() == '-')) {
+    base.pop_back();
+  }
+  if (base != "t" && base != "time" && base != "timestamp") return {};
+  if (!has_suffix) return {true, std::nullopt};
+  static const std::pair<const char*, TimeUnit> units[] = {
+      {"s", TimeUnit::s},      {"sec", TimeUnit::s},    {"ms", TimeUnit::ms},
+      {"us", TimeUnit::us},    {"\xc2\xb5s", TimeUnit::us}, {"\xce\xbcs", TimeUnit::us},
+      {"ns", TimeUnit::ns},    {"min", TimeUnit::min},  {"h", TimeUnit::h},
+      {"d", TimeUnit::d},      {"day", TimeUnit::d},    {"days", TimeUnit::d},
+      {"mjd", TimeUnit::d}};
+  for (const auto& [text, unit] : units) {
+    if (suffix == text) return {true, unit};
+  }
+  return {};  // "t_sensor", "time_offset": not a time column's name
+}
+
 std::string semicolon_hint(const std::string& where) {
   return "; " + where + " holds ';': fields are separated by commas, tabs or spaces, not ';' "
          "(convert it: decimal commas to points first, then ';' to ',')";
@@ -148,10 +189,8 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
   const std::size_t count = names.size();
   // Names are user data and every output needs them in UTF-8: one that is not (a Windows
   // program's "\xB0/s") is read as Windows-1252, here, once.
-  std::vector<std::string> shown(names);
-  for (std::string& n : shown) {
-    if (!is_utf8(n)) n = utf8_from_windows1252(n);
-  }
+  std::vector<std::string> shown;
+  for (const std::string& n : names) shown.push_back(shown_name(n));
   const auto label = [&](std::size_t c) {
     return has_header && !shown[c].empty() ? shown[c] : unnamed_column(c);
   };
@@ -202,9 +241,38 @@ ColumnSelection select_columns(const std::vector<std::string>& names, bool has_h
 
   ColumnSelection sel;
   sel.slots.assign(count, kSkipColumn);
+  int time_index = -1;
   if (!options.time_column.empty()) {
-    sel.slots[static_cast<std::size_t>(resolve(options.time_column, "time " + what))] = kTimeColumn;
+    time_index = resolve(options.time_column, "time " + what);
+  } else if (options.find_time_column && has_header) {
+    // A column named as time stamps, unless it is asked for as a channel.
+    const auto asked = [&](std::size_t c) {
+      return std::any_of(options.columns.begin(), options.columns.end(), [&](const std::string& s) {
+        return s == names[c] || s == shown[c] || s == std::to_string(c);
+      });
+    };
+    for (std::size_t c = 0; c < count; ++c) {
+      if (time_column_name(shown[c]).is_time && !asked(c)) {
+        sel.time_candidates.push_back(static_cast<int>(c));
+      }
+    }
+    // Two or more (t and a temperature named T): the reader keeps the one whose values increase.
+    if (sel.time_candidates.size() == 1) {
+      time_index = sel.time_candidates.front();
+      sel.time_column_found = shown[static_cast<std::size_t>(time_index)];
+    }
+  }
+  if (time_index >= 0) {
+    sel.slots[static_cast<std::size_t>(time_index)] = kTimeColumn;
     sel.has_time = true;
+    const auto by_name = has_header ? time_column_name(shown[static_cast<std::size_t>(time_index)])
+                                    : TimeColumnName{};
+    if (options.time_unit) {
+      sel.time_unit = *options.time_unit;
+    } else if (by_name.unit) {
+      sel.time_unit = *by_name.unit;
+      sel.time_unit_from_name = true;
+    }
   }
   const auto add_channel = [&](std::size_t c) {
     sel.slots[c] = static_cast<int>(sel.channel_columns.size());
@@ -285,9 +353,10 @@ bool parse_time_stamp(std::string_view field, TimeStamp& stamp) {
 
 void TimingAccumulator::start(bool has_time, TimeUnit unit) {
   has_time_ = has_time;
+  divisor_ = 1;
+  multiplier_ = 1;
   switch (unit) {
     case TimeUnit::s:
-      divisor_ = 1;
       break;
     case TimeUnit::ms:
       divisor_ = 1e3;
@@ -298,11 +367,20 @@ void TimingAccumulator::start(bool has_time, TimeUnit unit) {
     case TimeUnit::ns:
       divisor_ = 1e9;
       break;
+    case TimeUnit::min:
+      multiplier_ = 60;
+      break;
+    case TimeUnit::h:
+      multiplier_ = 3600;
+      break;
+    case TimeUnit::d:
+      multiplier_ = 86400;
+      break;
   }
 }
 
 double TimingAccumulator::seconds(const TimeStamp& s) const {
-  return (static_cast<double>(s.whole) + s.frac) / divisor_;
+  return (static_cast<double>(s.whole) + s.frac) / divisor_ * multiplier_;
 }
 
 void TimingAccumulator::add(const TimeStamp& stamp, std::int64_t line) {
@@ -315,7 +393,7 @@ void TimingAccumulator::add(const TimeStamp& stamp, std::int64_t line) {
     } else {
       step = static_cast<double>(whole_step);
     }
-    const double dt_s = (step + (stamp.frac - prev_.frac)) / divisor_;
+    const double dt_s = (step + (stamp.frac - prev_.frac)) / divisor_ * multiplier_;
     ++intervals_;
     mean_all_ += (dt_s - mean_all_) / static_cast<double>(intervals_);
     if (!(dt_s > 0) && non_increasing_++ == 0) {
@@ -449,6 +527,7 @@ TimingReport TimingAccumulator::report() const {
   r.samples = samples_;
   r.has_time = has_time_;
   r.rows_skipped_nonfinite = skipped_;
+  r.header = header_;
   if (!has_time_) return r;
   r.non_increasing = non_increasing_;
   r.mean_interval_s = intervals_ > 0 ? mean_all_ : 0;

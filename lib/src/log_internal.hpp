@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sigmatau/log_reader.hpp"
@@ -28,6 +29,9 @@ constexpr std::size_t kMaxQuotedField = 40;
 /// nominal interval.
 inline constexpr double kGapFactor = 1.5;
 
+/// "c<index>", the name of a column without a header (or with an empty name).
+std::string unnamed_column(std::size_t index);
+
 /// A duration for a message: "40 ms", "2.5 s", "-3 us" (4 significant digits).
 std::string format_seconds(double s);
 
@@ -44,6 +48,10 @@ std::string_view trim_field(std::string_view field);
 /// subnormal.
 std::optional<double> to_number(std::string_view field);
 
+/// A header name as every output shows it: UTF-8 unchanged, anything else read as
+/// Windows-1252 (text_encoding.hpp).
+std::string shown_name(std::string_view raw);
+
 /// `field` in double quotes for a message, cut to kMaxQuotedField characters ("..." appended).
 std::string quote_field(std::string_view field);
 
@@ -57,13 +65,29 @@ struct ColumnSelection {
   std::vector<int> channel_columns;  ///< per channel: its file column
   std::vector<std::string> channel_names;  ///< UTF-8 (names that are not: utf8_from_windows1252)
   bool has_time = false;
+  TimeUnit time_unit = TimeUnit::s;  ///< of the time column (LogOptions, else its name's suffix)
+  bool time_unit_from_name = false;
+  std::string time_column_found;     ///< found by name (LogOptions::find_time_column), or ""
+  /// The columns named as time stamps (LogOptions::find_time_column); with two or more none is
+  /// taken here: the text reader keeps the one whose values increase.
+  std::vector<int> time_candidates;
   /// One per selected column whose header name is not UTF-8: how it was read (TimingReport).
   std::vector<std::string> warnings;
 };
 
+/// The unit a time column's name gives ("t_ms", "time [us]", "Timestamp_ns", "t_mjd": days),
+/// nullopt when the name carries none; `is_time` says whether the name is that of a time column
+/// (t, time or timestamp, any case, with or without such a suffix).
+struct TimeColumnName {
+  bool is_time = false;
+  std::optional<TimeUnit> unit;
+};
+TimeColumnName time_column_name(std::string_view name);
+
 /// Resolves the selection. `names` holds one entry per file column (header names as read, or
 /// empty strings without a header; a name that is not UTF-8 is read as Windows-1252, matched
-/// both ways, and said in ColumnSelection::warnings); `numeric[c]` says whether the first data row holds a number there.
+/// both ways, and said in ColumnSelection::warnings); `numeric[c]` says whether the first data
+/// row holds a number there.
 /// `what` is "column" (text) or "channel" (binary). Errors are ParseError at (file, names_line, 0)
 /// for names and indices, at (file, data_line, 0) for "no numeric columns".
 ColumnSelection select_columns(const std::vector<std::string>& names, bool has_header,
@@ -96,6 +120,8 @@ class TimingAccumulator {
   /// Adds `n` samples without time stamps.
   void add_untimed(std::int64_t n) { samples_ += n; }
   void add_skipped() { ++skipped_; }
+  /// What the text log's header told the reader (reported as TimingReport::header).
+  void set_header(TextHeader header) { header_ = std::move(header); }
   double seconds(const TimeStamp& stamp) const;
   /// Call once at the end of the input: freezes the nominal interval; under GapPolicy::error
   /// (and ::fill, for non-increasing stamps) throws the ParseError described there.
@@ -130,7 +156,9 @@ class TimingAccumulator {
   std::string jitter_advice() const;
 
   bool has_time_ = false;
-  double divisor_ = 1;  // file unit -> s (divided by, so ms -> s is exactly rounded)
+  double divisor_ = 1;     // file unit -> s (divided by, so ms -> s is exactly rounded)
+  double multiplier_ = 1;  // ... then multiplied by (min, h, d)
+  TextHeader header_;
   std::int64_t samples_ = 0;
   std::int64_t skipped_ = 0;
   TimeStamp prev_;

@@ -29,7 +29,11 @@ TimeUnit parse_time_unit(std::string_view text) {
   if (text == "ms") return TimeUnit::ms;
   if (text == "us") return TimeUnit::us;
   if (text == "ns") return TimeUnit::ns;
-  throw Error("unknown time unit \"" + std::string(text) + "\" (expected s, ms, us or ns)");
+  if (text == "min") return TimeUnit::min;
+  if (text == "h") return TimeUnit::h;
+  if (text == "d") return TimeUnit::d;
+  throw Error("unknown time unit \"" + std::string(text) +
+              "\" (expected s, ms, us, ns, min, h or d)");
 }
 
 BinaryFormat parse_binary_format(std::string_view text) {
@@ -94,7 +98,7 @@ struct LogReader::Impl {
       text = std::make_unique<detail::TextLog>(*source, options, buffer_bytes, timing);
       selection = &text->selection();
     }
-    timing.start(selection->has_time, options.time_unit);
+    timing.start(selection->has_time, selection->time_unit);
   }
 };
 

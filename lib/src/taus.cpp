@@ -1,9 +1,10 @@
 // Averaging-factor grids for deviation curves (tau = m tau0).
 //
 // Glossary: N = number of phase points, m = averaging factor, tau0 = sample interval [s].
-// Stable32's stop ratios (quoted in allantools' tau_generator, THEORY.md 1.6): the largest m
-// reported is (N-1)/ratio, beyond which a statistic has too few terms to mean much.
-#include "sigmatau/sampling_limits.hpp"
+// Stable32's stop ratios (W. J. Riley, "The Evolution of Frequency Stability Analysis Software",
+// Table III; allantoolkit's tau_generator): the largest m reported is (data points)/ratio, beyond
+// which a statistic has too few terms to mean much. Stable32 counts the values it was given: N
+// phase points, or M = N - 1 frequency values.
 #include "sigmatau/taus.hpp"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <cstdio>
 
 #include "sigmatau/error.hpp"
+#include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
 
 namespace sigmatau {
@@ -104,15 +106,17 @@ TauSpec parse_tau_spec(std::string_view text) {
   return spec;
 }
 
-std::int64_t max_averaging_factor(Statistic statistic, std::int64_t n_phase_points) {
+std::int64_t max_averaging_factor(Statistic statistic, std::int64_t n_phase_points,
+                                  DataKind kind) {
   const std::int64_t N = n_phase_points;
   if (N < 2) return 0;
+  const std::int64_t data_points = kind == DataKind::phase ? N : N - 1;
   // Largest m with at least one term (term_count in allan.cpp).
   std::int64_t limit = 0;
   switch (statistic) {
     case Statistic::adev:
-    case Statistic::oadev:
-    case Statistic::totdev: limit = (N - 1) / 2; break;
+    case Statistic::oadev: limit = (N - 1) / 2; break;
+    case Statistic::totdev: limit = N / 2; break;
     case Statistic::mdev:
     case Statistic::tdev: limit = N / 3; break;
     case Statistic::hdev:
@@ -120,14 +124,16 @@ std::int64_t max_averaging_factor(Statistic statistic, std::int64_t n_phase_poin
   }
   if (statistic == Statistic::totdev && N < 3) limit = 0;
   // A record too short for the stop ratio still gets m = 1 when that has terms.
-  const std::int64_t by_ratio = std::max<std::int64_t>((N - 1) / stop_ratio(statistic), 1);
+  const std::int64_t by_ratio =
+      std::max<std::int64_t>(data_points / stop_ratio(statistic), 1);
   return std::min(by_ratio, limit);
 }
 
 std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic statistic,
-                                            std::int64_t n_phase_points, double tau0_s) {
+                                            std::int64_t n_phase_points, double tau0_s,
+                                            DataKind kind) {
   checked_interval_s(tau0_s, "sample interval tau0_s");
-  const std::int64_t max_m = max_averaging_factor(statistic, n_phase_points);
+  const std::int64_t max_m = max_averaging_factor(statistic, n_phase_points, kind);
   std::vector<std::int64_t> m;
   switch (spec.kind) {
     case TauSpec::Kind::octave:
@@ -178,10 +184,12 @@ std::vector<std::int64_t> averaging_factors(const TauSpec& spec, Statistic stati
           char text[200];
           std::snprintf(text, sizeof text,
                         "tau %g s is too long for %s on this log: the longest is %g s (m = %lld "
-                        "of %lld samples)",
+                        "of %lld %s)",
                         seconds, std::string(to_string(statistic)).c_str(),
                         static_cast<double>(max_m) * tau0_s, static_cast<long long>(max_m),
-                        static_cast<long long>(n_phase_points - 1));
+                        static_cast<long long>(kind == DataKind::phase ? n_phase_points
+                                                                       : n_phase_points - 1),
+                        kind == DataKind::phase ? "phase points" : "samples");
           throw Error(text);
         }
         m.push_back(static_cast<std::int64_t>(rounded));

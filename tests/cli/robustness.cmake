@@ -160,7 +160,7 @@ expect 2 "nonfinite\.csv:52:2: non-finite value"
 run adev "$W/nonfinite.csv" --time-column t --nonfinite skip
 expect 2 "nonfinite\.csv:53: time stamp gap .*2 rows were dropped by --nonfinite skip, and each leaves such a gap"
 run adev "$W/nonfinite.csv" --time-column t --nonfinite skip --gaps split
-expect 0 "note: .*nonfinite\.csv: 2 rows with a non-finite value skipped \(--nonfinite skip\)"
+expect 0 "note: .*nonfinite\.csv: 2 rows with a non-finite or non-numeric value skipped \(--nonfinite skip\)"
 grep -q "198 samples" "$W/.stdout" || fail "expected 198 samples: $(head -1 "$W/.stdout")"
 echo "ok: 198 samples kept"
 ]=])

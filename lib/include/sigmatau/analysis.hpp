@@ -17,6 +17,7 @@
 #include "sigmatau/allan.hpp"
 #include "sigmatau/channel_names.hpp"
 #include "sigmatau/compliance.hpp"
+#include "sigmatau/confidence.hpp"
 #include "sigmatau/convert.hpp"
 #include "sigmatau/log_reader.hpp"
 #include "sigmatau/noise_model.hpp"
@@ -63,6 +64,8 @@ struct AnalysisOptions {
   DensityConvention convention = DensityConvention::two_sided;
   BiasModel bias_model = BiasModel::random_walk;
   unsigned threads = 0;
+  /// EDF model of the curves' intervals (the CLI takes EdfModel::discrete for IMU data).
+  EdfModel edf_model = EdfModel::greenhall;
   /// Dynamic Allan deviation: OADEV over this many half-overlapping windows of the (trimmed)
   /// log, so a change of the noise during the run shows; 0: off.
   int dynamic_windows = 0;

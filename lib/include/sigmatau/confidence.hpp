@@ -10,7 +10,8 @@
 ///    (B1 ratio and R(n) methods, used when too few points remain for the ACF).
 ///  - C. A. Greenhall, W. J. Riley, "Uncertainty of stability variances based on finite
 ///    differences", 35th PTTI, 2003 (EDF algorithm).
-///  - NIST SP 1065 Table 7 (TOTDEV EDF), eq. (45) (chi-squared interval).
+///  - NIST SP 1065 Table 7 (TOTDEV EDF b T/tau - c, with D. A. Howe's three-digit b and c, as
+///    Stable32 uses them), eq. (45) (chi-squared interval).
 ///
 /// alpha is the exponent of the fractional-frequency (rate) PSD S_y(f) ~ f^alpha:
 ///  +2 white PM (quantization), +1 flicker PM, 0 white FM (angle random walk),
@@ -20,6 +21,7 @@
 
 #include "sigmatau/allan.hpp"
 #include "sigmatau/phase_series.hpp"
+#include "sigmatau/units.hpp"
 
 namespace sigmatau {
 
@@ -70,13 +72,24 @@ double discrete_edf(Statistic statistic, int alpha, std::int64_t m, std::int64_t
 
 /// EDF model for equivalent_dof.
 enum class EdfModel {
-  /// Greenhall & Riley 2003 throughout, as Stable32 prints it (the default).
+  /// Greenhall & Riley 2003 throughout, as Stable32 prints it (the library's default; the CLI
+  /// chooses by the data, default_edf_model).
   greenhall,
   /// discrete_edf while m (d + 1) <= 100, the range where Greenhall models each phase sample as
   /// averaged over tau0 (there discrete_edf costs at most ~2e4 lags); Greenhall beyond, where it
   /// samples the phase and agrees with discrete_edf within 1 % except for flicker PM.
   discrete,
 };
+
+/// The EDF model for data of `kind` whose values are in a unit of dimension `unit`:
+/// EdfModel::discrete for sampled inertial sensors, whose noise is discrete (independent rate
+/// samples for white noise, their running sum for a random walk: bench/results_edf_coverage.md
+/// shows Greenhall's intervals miss or overshoot their level there at the shortest taus), i.e.
+/// an angular rate or acceleration for rate input, an angle or velocity for increments and phase
+/// (an integrated angle), or raw counts; EdfModel::greenhall otherwise: clock data (fractional
+/// frequency, phase in s), as Stable32 prints them, and values of unknown unit
+/// (dim::dimensionless with no unit given).
+EdfModel default_edf_model(DataKind kind, const Dimension& unit);
 
 /// equivalent_dof with a choice of model; EdfModel::greenhall gives equivalent_dof(statistic,
 /// alpha, m, n_phase_points). TOTDEV always uses SP 1065 Table 7.

@@ -11,7 +11,16 @@
 /// - The delimiter is chosen from the first data line: a tab if it holds one, else a comma if it
 ///   holds one, else runs of spaces/tabs. Spaces around a field, a leading '+' and one pair of
 ///   surrounding double quotes are tolerated; quoted fields may not contain the delimiter.
+/// - Lines before the header or first data row whose first field ends in ':' ("Type: Phase",
+///   "File: AUTO.DAT", "Date: 01/01/21 15:34:21") are a file preamble, skipped like comments; a
+///   Stable32 data file's "Type:" and "Tau:" (in such lines or in '#' comments) are reported in
+///   TimingReport::header.
 /// - The first non-comment row is a header when any of its fields is not a number.
+/// - A column is read as data, by default, when its first data field is a number, or when it is
+///   not but the column holds numbers in most of the rows after it (a typo in the first row:
+///   then that field is an error, like any field that is not a number). A field that is a number
+///   with a decimal comma ("1,288") is an error naming it. Other columns are text and left out,
+///   each listed in TimingReport::header.text_columns.
 /// - Limits (for bounded memory on hostile input): a line holds at most 1 MiB and at most 100000
 ///   fields; longer lines or wider rows are a ParseError.
 /// Memory stays bounded: the reader holds one read buffer (default 4 MiB) plus one line.
@@ -37,8 +46,9 @@
 
 namespace sigmatau {
 
-/// Unit of a time column: seconds, milli-, micro- or nanoseconds.
-enum class TimeUnit { s, ms, us, ns };
+/// Unit of a time column: seconds, milli-, micro- or nanoseconds, minutes, hours or days (e.g. a
+/// Modified Julian Date).
+enum class TimeUnit { s, ms, us, ns, min, h, d };
 /// Type of each value of a raw binary log (none: the log is text or a ROS bag): 16- or 32-bit
 /// signed integers, 32- or 64-bit IEEE floats (value_bytes gives the size).
 enum class BinaryFormat { none, i16, i32, f32, f64 };
@@ -81,7 +91,7 @@ enum class TruncatedPolicy {
 /// "error" | "use". Throws Error otherwise.
 TruncatedPolicy parse_truncated_policy(std::string_view text);
 
-/// "s" | "ms" | "us" | "ns"; "i16" | "i32" | "f32" | "f64"; "report" | "error" | "split" |
+/// "s" | "ms" | "us" | "ns" | "min" | "h" | "d"; "i16" | "i32" | "f32" | "f64"; "report" | "error" | "split" |
 /// "fill"; "skip" | "error". Throw Error otherwise.
 TimeUnit parse_time_unit(std::string_view text);
 BinaryFormat parse_binary_format(std::string_view text);
@@ -101,7 +111,15 @@ struct LogOptions {
                                      ///< empty: every column whose first data field is a number,
                                      ///< except the time column, in file order
   std::string time_column;           ///< header name or 0-based index; empty: no time column
-  TimeUnit time_unit = TimeUnit::s;   ///< unit of the time column's values
+                                     ///< (or the one found by name, find_time_column)
+  /// When time_column is empty: the header column named t, time or timestamp (any case), alone
+  /// or with a unit suffix ("_s", "_ms", "_us", "_ns", "_min", "_h", "_d", "_mjd", or in brackets:
+  /// "time [ms]"), is the time column. A column named in `columns` is never taken, nor one whose
+  /// values do not increase in the first rows (TextHeader::time_column_not_increasing: of t and
+  /// a temperature named T, t is taken); two that both increase are a ParseError.
+  bool find_time_column = false;
+  /// Unit of the time column's values; unset: the unit suffix of its name (t_ms: ms), else s.
+  std::optional<TimeUnit> time_unit;
   NonFinitePolicy nonfinite = NonFinitePolicy::error;
   GapPolicy gaps = GapPolicy::report;  ///< see GapPolicy (needs a time column to do anything)
   // Raw binary input (interleaved samples, channel-major per row):
@@ -165,6 +183,33 @@ bool is_gzip_file(const std::string& path);
 /// stamps have been read.
 inline constexpr std::int64_t kRateMedianIntervals = 100000;
 
+/// A column left out of the default selection: its first data field is not a number, and nor are
+/// most of the fields after it (text: a status word, a date).
+struct TextColumn {
+  std::int64_t column = 0;  ///< 0-based
+  std::string name;         ///< header name, or "c<index>"
+  std::string first_field;  ///< its first data field, as written (cut to 40 characters)
+  std::int64_t line = 0;    ///< the line of that field
+};
+
+/// What a text log's header told the reader besides its column names (empty for other inputs).
+struct TextHeader {
+  std::vector<TextColumn> text_columns;  ///< columns left out as text, in file order
+  std::string time_column_found;  ///< the time column found by name (find_time_column), or ""
+  /// The columns named as time stamps whose values do not increase (a temperature named T),
+  /// comma-separated: read as channels, not as the time column; "" when none.
+  std::string time_column_not_increasing;
+  TimeUnit time_unit = TimeUnit::s;  ///< the time column's unit as used
+  bool time_unit_from_name = false;  ///< whether that unit came from the column's name
+  /// A Stable32 data file's declarations ("Type: Phase", "Tau: 1.0e+00", with or without '#'):
+  /// "phase" or "frequency" ("" when not declared), the sample interval [s] (0 when not).
+  std::string declared_type;
+  double declared_tau_s = 0;
+  /// A Stable32 data file of two columns (a time tag, then the value) read without `columns`:
+  /// the time-tag column, left out (Stable32 ignores the tags and uses its Tau); "" otherwise.
+  std::string time_tag_column;
+};
+
 /// Statistics of the time column, accumulated while reading. The nominal interval is the exact
 /// median of the first kRateMedianIntervals intervals (bounded memory; the whole log when it is
 /// shorter).
@@ -208,6 +253,7 @@ struct TimingReport {
   /// `samples` of them delivered); -1 when the recording is complete, and for other inputs.
   std::int64_t truncated_at_byte = -1;
   std::string truncated_file;  ///< the file cut short (one of a rosbag2 folder's files), or ""
+  TextHeader header;  ///< text logs: what their header told the reader
   /// What the reader met that did not stop it and the user should hear, one sentence each
   /// (without the file name): header names that are not UTF-8 and how they were read; bag
   /// messages on a connection no record declares (skipped, counted); a bag whose stated message
