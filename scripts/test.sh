@@ -45,7 +45,8 @@ if [[ " $stages " == *" plain "* ]]; then
   cmake --build build -j "$jobs" --target "${targets[@]}"
   elapsed "plain build"
   # Everything that is not a unit test, then the unit tests kept out of the sanitized stage.
-  ctest --test-dir build --output-on-failure -j "$jobs" -E '^test_'
+  # Tests labelled needs_unit_tests run a unit-test executable (not built here): stage 2 runs them.
+  ctest --test-dir build --output-on-failure -j "$jobs" -E '^test_' -LE needs_unit_tests
   ctest --test-dir build --output-on-failure -j "$jobs" -R '^test_' -L sanitize_skip
   elapsed "plain tests"
 fi

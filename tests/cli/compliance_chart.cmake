@@ -22,15 +22,19 @@ if(EXISTS ${adis16405})
 endif()
 
 # 36 rows with labels of up to 64 characters over four decades, drawn by test_compliance_chart.
+# That unit test is built only in scripts/test.sh's sanitized stage, so both tests carry the label
+# needs_unit_tests, which the plain stage leaves out (it ran the Chromium check without the chart).
 add_test(NAME compliance_chart_long_labels_draw
          COMMAND test_compliance_chart --test-case=*widens*)
 set_tests_properties(compliance_chart_long_labels_draw PROPERTIES
-                     ENVIRONMENT "SIGMATAU_CHART_DIR=${chart_dir}/long_labels")
+                     ENVIRONMENT "SIGMATAU_CHART_DIR=${chart_dir}/long_labels"
+                     LABELS needs_unit_tests)
 add_test(NAME compliance_chart_in_chromium_long_labels
          COMMAND ${CMAKE_COMMAND} -DFILE=${chart_dir}/long_labels/long_labels_36_rows.svg
                  -DMIN_TEXTS=40 -P ${chart_check})
 set_tests_properties(compliance_chart_in_chromium_long_labels PROPERTIES
-                     DEPENDS compliance_chart_long_labels_draw SKIP_RETURN_CODE 77)
+                     DEPENDS compliance_chart_long_labels_draw SKIP_RETURN_CODE 77
+                     LABELS needs_unit_tests)
 
 # The demo's report (tests/cli/demo.cmake).
 add_test(NAME compliance_chart_in_chromium_demo
