@@ -129,7 +129,11 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
       ->capture_default_str();
   command.add_option("--taus", args.taus, "octave | decade | many[:P] | all | seconds list")
       ->capture_default_str();
-  command.add_option("--ci", args.ci, "confidence level of every interval")->capture_default_str();
+  command.add_option("--ci", args.ci,
+                     "two-sided confidence level of every interval; 0.683 (one sigma) by default, "
+                     "as the ADEV error bars Stable32 and SP 1065 print, so a pass is a one-sigma "
+                     "statement: give 0.95 for a production gate (fit and calibrate default to it)")
+      ->capture_default_str();
   command.add_option("--tau-min", args.fit_tau_min_s,
                      "the noise-term fit uses only taus >= this [s] (a sensor that filters its "
                      "output departs from the noise terms at the shortest taus)");

@@ -306,7 +306,10 @@ void add_psd_command(CLI::App& app) {
   command->add_option("--bins-per-decade", args->bins_per_decade,
                       "average the PSD into log-spaced bins (0: every FFT bin)")
       ->capture_default_str();
-  command->add_option("--ci", args->ci, "confidence level of the noise-density interval")
+  command->add_option("--ci", args->ci,
+                      "two-sided confidence level of the noise-density interval; 0.683 (one "
+                      "sigma) by default, as adev's error bars, so the two compare (fit and "
+                      "calibrate default to 0.95)")
       ->capture_default_str();
   command->add_option("--format", args->format, "table | csv | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");

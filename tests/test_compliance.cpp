@@ -155,3 +155,26 @@ TEST_CASE("measured parameters are read from fit and calibrate results") {
       measured_parameters_from_json(R"json({"channels":[{"name":"temp","parameters":{}}]})json", "t.json"),
       doctest::Contains("temp"), Error);
 }
+
+TEST_CASE("an axis the sheet prints apart is compared with its own value (BMI088-style accel)") {
+  // typ 160 on X and Y, typ 190 on Z, max 300 for none of them: the Z value has no max, so its
+  // limit is its own typ, not the entry's max (axes: replaces min / typ / max as printed).
+  const DataSheet sheet =
+      load_data_sheet(test::test_data_dir() / "specs" / "axis_values.yaml");
+  const double ug = 1e-6 * 9.80665;
+  const auto accel_n = [&](const char* axis, double value) {
+    return MeasuredParameter{Sensor::accel, MeasuredQuantity::white_noise, axis, value,
+                             0.99 * value, 1.01 * value};
+  };
+  const auto items = check_compliance({accel_n("x", 170 * ug), accel_n("z", 170 * ug),
+                                       accel_n("z", 200 * ug)},
+                                      sheet);
+  REQUIRE(items.size() == 3);
+  CHECK(items[0].limit_si == test::rel(300 * ug, 1e-12));  // the entry's max on X
+  CHECK_FALSE(items[0].limit_is_typical);
+  CHECK(items[0].verdict == Verdict::pass);
+  CHECK(items[1].limit_si == test::rel(190 * ug, 1e-12));  // Z's own typical value
+  CHECK(items[1].limit_is_typical);
+  CHECK(items[1].verdict == Verdict::pass);
+  CHECK(items[2].verdict == Verdict::fail);
+}

@@ -43,12 +43,14 @@ bool contains(const std::string& text, const std::string& part) {
 }  // namespace
 
 TEST_CASE("a sensor the sheet gives no noise term is refused, naming the sheet and the option") {
-  SUBCASE("BMI088 accelerometer: no noise field at all") {
-    const std::string m = refusal(sheet("bosch_bmi088"), Sensor::accel);
-    CHECK(contains(m, "data sheet bosch_bmi088"));
+  SUBCASE("accelerometer: no noise field at all") {
+    const DataSheet gyro_only =
+        load_data_sheet(test::test_data_dir() / "specs" / "gyro_noise_only.yaml");
+    const std::string m = refusal(gyro_only, Sensor::accel);
+    CHECK(contains(m, "data sheet gyro_noise_only"));
     CHECK(contains(m, "prints no accel noise term"));
     CHECK(contains(m, "--accel-model"));
-    CHECK(refusal(sheet("bosch_bmi088"), Sensor::gyro).empty());  // its gyro density is read
+    CHECK(refusal(gyro_only, Sensor::gyro).empty());  // its gyro density is read
   }
   SUBCASE("gyro: ranges only") {
     const std::string m = refusal(no_noise_terms(), Sensor::gyro);
@@ -64,7 +66,7 @@ TEST_CASE("a sensor the sheet gives no noise term is refused, naming the sheet a
 }
 
 TEST_CASE("a sensor without white noise is simulated with what the sheet prints, and warned about") {
-  for (const char* name : {"adi_adis16465", "adi_adis16470", "adi_adis16505"}) {
+  for (const char* name : {"adi_adis16470", "adi_adis16505"}) {
     CAPTURE(name);
     const DataSheet s = sheet(name);
     const SheetNoise n = simulation_noise_from_data_sheet(s, Sensor::accel,
@@ -115,4 +117,15 @@ TEST_CASE("the LSM6DSO's noise densities are simulated, its RMS noise is not nee
     CHECK(contains(n.read[0], density));
     CHECK(n.left_out == std::vector<std::string>{"bias instability", "rate random walk"});
   }
+}
+
+TEST_CASE("a density printed per axis is simulated per axis (BMI088 accelerometer: Z at 190/160)") {
+  const SheetNoise n = simulation_noise_from_data_sheet(sheet("bosch_bmi088"), Sensor::accel,
+                                                        DensityConvention::two_sided);
+  REQUIRE(n.axes[0].white.has_value());
+  REQUIRE(n.axes[2].white.has_value());
+  CHECK(*n.axes[1].white == *n.axes[0].white);
+  CHECK(*n.axes[2].white / *n.axes[0].white == test::rel(190.0 / 160.0, 1e-12));
+  REQUIRE(n.read.size() == 1);
+  CHECK(contains(n.read[0], "160 µg/√Hz (typ), 190 µg/√Hz (typ) on z"));
 }

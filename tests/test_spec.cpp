@@ -134,6 +134,34 @@ TEST_CASE("the VN-100's accelerometer bias stability is a maximum, as its data s
   SIGMATAU_CHECK_REL(b->max->value_si, 0.04e-3 * 9.80665, kRoundOff);
 }
 
+TEST_CASE("the BMI088 accelerometer noise density is read per axis from BST-BMI088-DS001-14") {
+  // Table 4, page 9: 160 µg/√Hz on X and Y, 190 µg/√Hz on Z (±3 g, 25 °C, normal mode).
+  const DataSheet s = load_data_sheet(kSpecsDir / "bosch_bmi088.yaml");
+  const SpecValue* nd = s.accel->find(SpecField::noise_density);
+  REQUIRE(nd != nullptr);
+  CHECK(nd->source.primary);
+  CHECK(nd->page == "9");
+  const double ug = 1e-6 * 9.80665;
+  REQUIRE(nd->for_axis("x").typ.has_value());
+  SIGMATAU_CHECK_REL(nd->for_axis("x").typ->value_si, 160 * ug, kRoundOff);
+  SIGMATAU_CHECK_REL(nd->for_axis("y").typ->value_si, 160 * ug, kRoundOff);
+  SIGMATAU_CHECK_REL(nd->for_axis("z").typ->value_si, 190 * ug, kRoundOff);
+  CHECK(nd->for_axis("z").condition.starts_with("Z axis"));
+  CHECK(nd->for_axis("xy").typ->value_si == nd->typ->value_si);  // no axis of that name
+}
+
+TEST_CASE("the ADIS16465 accelerometer velocity random walk is read from Rev. B, Table 1") {
+  // Page 3: 0.012 m/s/√h (1 σ); page 4: noise density 23 µg/√Hz rms (10-40 Hz, no filtering).
+  const DataSheet s = load_data_sheet(kSpecsDir / "adi_adis16465.yaml");
+  const SpecValue* vrw = s.accel->find(SpecField::random_walk);
+  REQUIRE(vrw != nullptr);
+  CHECK(vrw->source.primary);
+  CHECK(vrw->page == "3");
+  SIGMATAU_CHECK_REL(vrw->typ->value_si, 0.012 / 60.0, kRoundOff);
+  SIGMATAU_CHECK_REL(typ(s, Sensor::accel, SpecField::noise_density).value_si, 23e-6 * 9.80665,
+                     kRoundOff);
+}
+
 TEST_CASE("a value with typ and max reports max as its limit") {
   const DataSheet s = load_data_sheet(test_data_dir() / "specs" / "good_minimal.yaml");
   const SpecValue* b = s.gyro->find(SpecField::bias_instability);
@@ -233,6 +261,13 @@ TEST_CASE("bad data sheets fail with the file, line, column, field, found and ex
     CHECK(e.message() == "gyro.initial_bias.typ: found -20 deg/s, expected a magnitude >= 0 "
                          "(write a symmetric bound as ±X)");
   }
+}
+
+TEST_CASE("an axis under axes: other than x, y, z is a located error") {
+  const ParseError e = parse_error("bad_axis.yaml");
+  CHECK(e.line() == 15);
+  CHECK(e.column() == 7);
+  CHECK(e.message().starts_with("accel.noise_density.axes: found unknown key \"w\", expected one of x, y, z"));
 }
 
 TEST_CASE("invalid YAML and missing keys are located errors too") {

@@ -173,8 +173,11 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
     bool found = false;
     if (section) {
       for (const auto& listed : candidates(p.quantity, options.convention)) {
-        const SpecValue* value = section->find(listed.field);
-        if (!value || !value->limit()) continue;
+        const SpecValue* entry = section->find(listed.field);
+        if (!entry) continue;
+        const SpecValue axis_entry = entry->for_axis(p.axis);  // a value printed for this axis
+        const SpecValue* value = &axis_entry;
+        if (!value->limit()) continue;
         const Candidate candidate = p.quantity == MeasuredQuantity::non_orthogonality
                                         ? axis_to_axis(listed, *value)
                                         : listed;

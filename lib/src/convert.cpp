@@ -208,7 +208,6 @@ TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
     throw Error("data sheet " + sheet.name + " has no " + std::string(to_string(sensor)) +
                 " section");
   }
-  NoiseTerms terms;
   TriadNoise triad;
   triad.sensor = sensor;
   const auto describe = [](const SpecValue& v) {
@@ -216,29 +215,53 @@ TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
     std::string which = v.typ && p == &*v.typ ? "typ" : (v.max && p == &*v.max ? "max" : "min");
     return p->text + " (" + which + ")";
   };
-  const SpecValue* arw = section->find(SpecField::random_walk);
-  const SpecValue* nd = section->find(SpecField::noise_density);
-  if (arw && arw->nominal()) {
-    terms.white = arw->nominal()->value_si;
-    triad.white_origin = std::string(sensor == Sensor::gyro ? "angle" : "velocity") +
-                         " random walk " + describe(*arw) +
-                         " is the Allan N itself (the density convention does not apply)";
-  } else if (nd && nd->nominal()) {
-    terms.white = white_from_noise_density(nd->nominal()->value_si, convention);
-    triad.white_origin =
-        "noise density " + describe(*nd) + " " + std::string(noise_density_reading(convention));
+  // "160 µg/√Hz (typ), 190 µg/√Hz (typ) on z" where the sheet prints an axis apart.
+  const auto describe_axes = [&](const SpecValue& v) {
+    std::string text = describe(v);
+    for (const AxisValue& a : v.axes) {
+      const SpecValue on_axis = v.for_axis(a.axis);
+      if (on_axis.nominal()) text += ", " + describe(on_axis) + " on " + a.axis;
+    }
+    return text;
+  };
+  static constexpr std::array<std::string_view, 3> kAxes = {"x", "y", "z"};
+  for (std::size_t i = 0; i < kAxes.size(); ++i) {
+    const bool first = i == 0;
+    const auto find = [&](SpecField field) -> std::optional<SpecValue> {
+      const SpecValue* v = section->find(field);
+      if (!v) return std::nullopt;
+      return v->for_axis(kAxes[i]);
+    };
+    NoiseTerms terms;
+    const auto arw = find(SpecField::random_walk);
+    const auto nd = find(SpecField::noise_density);
+    if (arw && arw->nominal()) {
+      terms.white = arw->nominal()->value_si;
+      if (first)
+        triad.white_origin = std::string(sensor == Sensor::gyro ? "angle" : "velocity") +
+                             " random walk " + describe_axes(*section->find(SpecField::random_walk)) +
+                             " is the Allan N itself (the density convention does not apply)";
+    } else if (nd && nd->nominal()) {
+      terms.white = white_from_noise_density(nd->nominal()->value_si, convention);
+      if (first)
+        triad.white_origin = "noise density " +
+                             describe_axes(*section->find(SpecField::noise_density)) + " " +
+                             std::string(noise_density_reading(convention));
+    }
+    std::string bias;
+    if (const auto bi = find(SpecField::bias_instability); bi && bi->nominal()) {
+      terms.bias_instability = bi->nominal()->value_si / kFlickerFloorFactor;
+      bias = "in-run bias stability " + describe_axes(*section->find(SpecField::bias_instability)) +
+             " read as the ADEV floor 0.664 B";
+    }
+    if (const auto rrw = find(SpecField::rate_random_walk); rrw && rrw->nominal()) {
+      terms.rate_random_walk = rrw->nominal()->value_si;
+      bias += std::string(bias.empty() ? "" : "; ") + "rate random walk " +
+              describe_axes(*section->find(SpecField::rate_random_walk));
+    }
+    if (first) triad.bias_origin = bias;
+    triad.axes[i] = terms;
   }
-  std::string bias;
-  if (const SpecValue* bi = section->find(SpecField::bias_instability); bi && bi->nominal()) {
-    terms.bias_instability = bi->nominal()->value_si / kFlickerFloorFactor;
-    bias = "in-run bias stability " + describe(*bi) + " read as the ADEV floor 0.664 B";
-  }
-  if (const SpecValue* rrw = section->find(SpecField::rate_random_walk); rrw && rrw->nominal()) {
-    terms.rate_random_walk = rrw->nominal()->value_si;
-    bias += std::string(bias.empty() ? "" : "; ") + "rate random walk " + describe(*rrw);
-  }
-  triad.bias_origin = bias;
-  triad.axes = {terms, terms, terms};
   return triad;
 }
 

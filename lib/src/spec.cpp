@@ -263,8 +263,8 @@ SpecValue parse_value(const Reader& r, const YAML::Node& key, const YAML::Node& 
     r.fail(node, where + ": found a " + Reader::kind(node) +
                      ", expected a map with typ / max / min / options and source");
   }
-  r.check_keys(node, where,
-               {"min", "typ", "max", "options", "condition", "note", "source", "page", "table"});
+  r.check_keys(node, where, {"min", "typ", "max", "options", "condition", "note", "source", "page",
+                             "table", "axes"});
   SpecValue v;
   v.line = key.Mark().line + 1;
   if (node["min"]) v.min = r.printed(node["min"], info, where + ".min");
@@ -295,6 +295,35 @@ SpecValue parse_value(const Reader& r, const YAML::Node& key, const YAML::Node& 
   order(v.typ, v.max, "typ", "max");
   order(v.min, v.typ, "min", "typ");
   order(v.min, v.max, "min", "max");
+  if (const auto axes = node["axes"]) {
+    if (!axes.IsMap() || axes.size() == 0) {
+      r.fail(axes, where + ".axes: found a " + Reader::kind(axes) +
+                       ", expected a map of x / y / z to the values printed for that axis");
+    }
+    r.check_keys(axes, where + ".axes", {"x", "y", "z"});
+    for (const auto& item : axes) {
+      AxisValue a;
+      a.axis = item.first.as<std::string>();
+      const std::string at = where + ".axes." + a.axis;
+      if (!item.second.IsMap()) {
+        r.fail(item.second, at + ": found a " + Reader::kind(item.second) +
+                                ", expected a map with typ / max / min (and condition)");
+      }
+      r.check_keys(item.second, at, {"min", "typ", "max", "condition"});
+      if (item.second["min"]) a.min = r.printed(item.second["min"], info, at + ".min");
+      if (item.second["typ"]) a.typ = r.printed(item.second["typ"], info, at + ".typ");
+      if (item.second["max"]) a.max = r.printed(item.second["max"], info, at + ".max");
+      if (!a.min && !a.typ && !a.max) {
+        r.fail(item.second, at + ": found no value, expected at least one of typ, max, min");
+      }
+      order(a.typ, a.max, "typ", "max");
+      order(a.min, a.typ, "min", "typ");
+      order(a.min, a.max, "min", "max");
+      if (item.second["condition"])
+        a.condition = r.scalar(item.second["condition"], at + ".condition");
+      v.axes.push_back(std::move(a));
+    }
+  }
   if (node["condition"]) v.condition = r.scalar(node["condition"], where + ".condition");
   if (node["note"]) v.note = r.scalar(node["note"], where + ".note");
   if (node["page"]) v.page = r.scalar(node["page"], where + ".page");
@@ -338,6 +367,19 @@ SensorSheet parse_sensor(const Reader& r, const YAML::Node& node, Sensor sensor,
 }
 
 }  // namespace
+
+SpecValue SpecValue::for_axis(std::string_view axis) const {
+  SpecValue v = *this;
+  v.axes.clear();
+  for (const AxisValue& a : axes) {
+    if (a.axis != axis) continue;
+    v.min = a.min;
+    v.typ = a.typ;
+    v.max = a.max;
+    if (!a.condition.empty()) v.condition = a.condition;
+  }
+  return v;
+}
 
 const PrintedValue* SpecValue::limit() const {
   if (max) return &*max;

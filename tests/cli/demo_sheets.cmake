@@ -16,16 +16,18 @@ sigmatau_cli_test(NAME cli_demo_sheet_without_noise_terms EXIT 2
   ARGS demo --sheet ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml --hours 0.2
        -o ${demo_sheets_dir}/no_noise_terms --force)
 
-# BMI088 prints no accelerometer noise term: the demo simulates the gyro only (three fitted
-# channels), names the accel as left out first in the Warnings, and nothing is stuck or unplotted.
+# A sheet whose accelerometer prints no noise term (a fixture, the shape the BMI088's had before
+# its data sheet was read): the demo simulates the gyro only (three fitted channels), names the
+# accel as left out first in the Warnings, and nothing is stuck or unplotted.
 sigmatau_cli_test(NAME cli_demo_sheet_sensor_left_out EXIT 0
-  STDERR "warning: data sheet bosch_bmi088 .*prints no accel noise term .*so the demo leaves the accel out"
+  STDERR "warning: data sheet gyro_noise_only .*prints no accel noise term .*so the demo leaves the accel out"
   STDOUT "gyro only"
-  ARGS demo --sheet bosch_bmi088 --hours 0.2 -o ${demo_sheets_dir}/bmi088 --force)
+  ARGS demo --sheet ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml --hours 0.2
+       -o ${demo_sheets_dir}/bmi088 --force)
 string(JOIN "@@" bmi088_json
-  "results.json::warnings 0::^data sheet bosch_bmi088 .*prints no accel noise term .*leaves the accel out"
+  "results.json::warnings 0::^data sheet gyro_noise_only .*prints no accel noise term .*leaves the accel out"
   "results.json::fit channels 2 name::^gz$"
-  "truth.json::gyro noise_source origin::^data sheet bosch_bmi088, each term x 0.8$"
+  "truth.json::gyro noise_source origin::^data sheet gyro_noise_only, each term x 0.8$"
   "truth.json::gyro noise_source read 0::^noise density 0.014")
 string(JOIN "@@" bmi088_absent "results.json::fit channels 3" "truth.json::accel")
 add_test(NAME cli_demo_sheet_sensor_left_out_files
@@ -36,18 +38,18 @@ add_test(NAME cli_demo_sheet_sensor_left_out_files
                  -P ${demo_check})
 set_tests_properties(cli_demo_sheet_sensor_left_out_files PROPERTIES DEPENDS cli_demo_sheet_sensor_left_out)
 
-# ADIS16465 prints no accelerometer white noise (bias stability only): simulate's warning reaches
+# ADIS16470 prints no accelerometer white noise (bias stability only): simulate's warning reaches
 # the report's Warnings and stderr, and truth.json says what was read and left out.
 sigmatau_cli_test(NAME cli_demo_sheet_without_white_noise EXIT 0
-  STDERR "warning: data sheet adi_adis16465 .*prints no white noise for the accel, so the demo simulates the accel with in-run bias stability 3.6"
-  ARGS demo --sheet adi_adis16465 --hours 0.2 -o ${demo_sheets_dir}/adis16465 --force)
-string(JOIN "@@" adis16465_json
+  STDERR "warning: data sheet adi_adis16470 .*prints no white noise for the accel, so the demo simulates the accel with in-run bias stability"
+  ARGS demo --sheet adi_adis16470 --hours 0.2 -o ${demo_sheets_dir}/adis16470 --force)
+string(JOIN "@@" adis16470_json
   "results.json::warnings 0::prints no white noise for the accel.*left out: white noise"
-  "truth.json::accel noise_source read 0::^in-run bias stability 3.6 µg [(]typ[)]"
+  "truth.json::accel noise_source read 0::^in-run bias stability 13 µg [(]typ[)]"
   "truth.json::accel noise_source left_out 0::^white noise"
-  "truth.json::gyro noise_source read 0::^angle random walk 0.15")
+  "truth.json::gyro noise_source read 0::^angle random walk 0.34")
 add_test(NAME cli_demo_sheet_without_white_noise_files
-         COMMAND ${CMAKE_COMMAND} -DDIR=${demo_sheets_dir}/adis16465 "-DJSON_MATCH=${adis16465_json}"
+         COMMAND ${CMAKE_COMMAND} -DDIR=${demo_sheets_dir}/adis16470 "-DJSON_MATCH=${adis16470_json}"
                  "-DTEXT_MATCH=report.html::id=\"warnings\".*prints no white noise for the accel"
                  -P ${demo_check})
 set_tests_properties(cli_demo_sheet_without_white_noise_files PROPERTIES DEPENDS cli_demo_sheet_without_white_noise)

@@ -204,18 +204,18 @@ sigmatau_cli_test(NAME cli_analyze_spec_nothing_to_check_gyro EXIT 2
   ARGS analyze ${PROJECT_SOURCE_DIR}/examples/gyro_static_100Hz.csv.gz --time-column t
        --gyro-unit deg/s --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/no_noise_terms.yaml
        -o ${fau_dir}/nothing_gyro)
-# The other way round: accelerometer columns against the BMI088 (noise limits for its gyro only).
+# The other way round: accelerometer columns against a sheet with noise limits for its gyro only.
 sigmatau_cli_test(NAME cli_analyze_spec_nothing_to_check_accel EXIT 2
-  STDERR "nothing to check: bosch_bmi088 \\(BMI088\\) .*the log has accelerometer channels ax, ay, az; .* limits are for the gyro"
+  STDERR "nothing to check: gyro_noise_only \\(T-GYRO\\) .*the log has accelerometer channels ax, ay, az; .* limits are for the gyro"
   NO_FILE ${fau_dir}/nothing_accel
-  ARGS analyze ${fau_imu6} --time-column t --columns ax,ay,az --accel-unit g --spec bosch_bmi088
-       -o ${fau_dir}/nothing_accel)
+  ARGS analyze ${fau_imu6} --time-column t --columns ax,ay,az --accel-unit g
+       --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml -o ${fau_dir}/nothing_accel)
 # From stdin (no header to read first) it is found after the analysis: still exit 2, no output.
 sigmatau_cli_test(NAME cli_analyze_spec_nothing_to_check_stdin EXIT 2
-  STDERR "nothing to check: bosch_bmi088 \\(BMI088\\) .*measured in stdin: the log has accelerometer channels ax, ay, az"
+  STDERR "nothing to check: gyro_noise_only \\(T-GYRO\\) .*measured in stdin: the log has accelerometer channels ax, ay, az"
   NO_FILE ${fau_dir}/nothing_stdin STDIN ${fau_imu6}
-  ARGS analyze - --time-column t --columns ax,ay,az --accel-unit g --spec bosch_bmi088
-       -o ${fau_dir}/nothing_stdin)
+  ARGS analyze - --time-column t --columns ax,ay,az --accel-unit g
+       --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml -o ${fau_dir}/nothing_stdin)
 # A sensor the sheet covers, but no term fitted (noise terms come from OADEV, first in --stat).
 sigmatau_cli_test(NAME cli_analyze_spec_nothing_fitted EXIT 2
   STDERR "put oadev first in --stat.*nothing to check: bosch_bmi088 .*gyro channels gx, gy, gz and accelerometer channels ax, ay, az, but no noise term of theirs was fitted"
@@ -224,6 +224,6 @@ sigmatau_cli_test(NAME cli_analyze_spec_nothing_fitted EXIT 2
        --stat mdev -o ${fau_dir}/nothing_fitted)
 # The same log and sheet with both sensors: the gyros are checked, exit 0.
 sigmatau_cli_test(NAME cli_analyze_spec_something_to_check EXIT 0
-  STDOUT "data sheet: Bosch Sensortec BMI088: \\*\\*all pass\\*\\*"
-  ARGS analyze ${fau_imu6} --time-column t --gyro-unit deg/s --accel-unit g --spec bosch_bmi088
-       -o ${fau_dir}/something --force)
+  STDOUT "data sheet: Test T-GYRO: \\*\\*all pass\\*\\*"
+  ARGS analyze ${fau_imu6} --time-column t --gyro-unit deg/s --accel-unit g
+       --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml -o ${fau_dir}/something --force)

@@ -230,8 +230,9 @@ simo_check(cli_simulate_csv_columns_sidecar "cli_simulate_out_unit_si"
 # --- review C finding 8: --spec and the noise terms a sheet does not print.
 sigmatau_cli_test(NAME cli_simulate_spec_no_accel_noise EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
   WORKING_DIRECTORY ${SIMO_DIR}
-  STDERR "data sheet bosch_bmi088 .*prints no accel noise term.*--accel-model"
-  ARGS simulate --spec bosch_bmi088 --sensors gyro,accel --rate 100 --duration 10 -o bad.csv)
+  STDERR "data sheet gyro_noise_only .*prints no accel noise term.*--accel-model"
+  ARGS simulate --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml
+       --sensors gyro,accel --rate 100 --duration 10 -o bad.csv)
 # A fixture with gyro ranges only and an accelerometer RMS noise only (tests/data/specs).
 sigmatau_cli_test(NAME cli_simulate_spec_no_gyro_noise EXIT 2 NO_FILE ${SIMO_DIR}/bad.csv
   WORKING_DIRECTORY ${SIMO_DIR}
@@ -244,19 +245,20 @@ sigmatau_cli_test(NAME cli_simulate_spec_rms_only EXIT 2 NO_FILE ${SIMO_DIR}/bad
        --rate 100 --duration 10 -o bad.csv)
 sigmatau_cli_test(NAME cli_simulate_spec_no_white EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
   STDOUT "wrote"
-  STDERR "warning: data sheet adi_adis16465 .*prints no white noise for the accel.*left out: white noise"
-  ARGS simulate --spec adi_adis16465 --sensors gyro,accel --rate 100 --duration 10 --force
+  STDERR "warning: data sheet adi_adis16470 .*prints no white noise for the accel.*left out: white noise"
+  ARGS simulate --spec adi_adis16470 --sensors gyro,accel --rate 100 --duration 10 --force
        -o adis.csv)
 simo_check(cli_simulate_spec_no_white_sidecar "cli_simulate_spec_no_white"
   -DFILE=${SIMO_DIR}/adis.csv.json
-  "-DJSON=accel/noise_source/origin=^data sheet adi_adis16465$@@accel/noise_source/left_out/0=^white noise@@gyro/noise_source/read/0=^angle random walk")
+  "-DJSON=accel/noise_source/origin=^data sheet adi_adis16470$@@accel/noise_source/left_out/0=^white noise@@gyro/noise_source/read/0=^angle random walk")
 # --accel-model supplies what the sheet lacks; the gyro stays the sheet's.
 sigmatau_cli_test(NAME cli_simulate_spec_with_accel_model EXIT 0 WORKING_DIRECTORY ${SIMO_DIR}
-  STDOUT "wrote" ARGS simulate --spec bosch_bmi088 --accel-model "N=190 ug/sqrt(Hz)"
+  STDOUT "wrote" ARGS simulate --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml
+       --accel-model "N=190 ug/sqrt(Hz)"
        --sensors gyro,accel --rate 100 --duration 10 --force -o bmi.csv)
 simo_check(cli_simulate_spec_with_accel_model_sidecar "cli_simulate_spec_with_accel_model"
   -DFILE=${SIMO_DIR}/bmi.csv.json
-  "-DJSON=accel/noise_source/origin=^--accel-model$@@gyro/noise_source/origin=^data sheet bosch_bmi088$@@accel/noise/0/white=^0\\.00186")
+  "-DJSON=accel/noise_source/origin=^--accel-model$@@gyro/noise_source/origin=^data sheet gyro_noise_only$@@accel/noise/0/white=^0\\.00186")
 
 # --- review C finding 5: a real quantizer 40x the per-sample noise (0.01 deg against
 # 0.15 deg/sqrt(h) x sqrt(10 ms) = 2.5e-4 deg). White noise only: the sidecar's exact theory gives

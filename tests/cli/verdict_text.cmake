@@ -14,8 +14,9 @@ add_test(NAME cli_check_no_gate_advice_at_95
          COMMAND ${CMAKE_COMMAND} -DCLI=$<TARGET_FILE:sigmatau_cli>
                  -DSPEC=xsens_mti630 -DRESULT=${CMAKE_CURRENT_BINARY_DIR}/cli_check_at_95/fit_at_typical_95.json
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/support/check_without_gate_advice.cmake)
-# A sensor the sheet describes without any noise term gets a line (the BMI088's accelerometer
-# vanished from the output, while the ADIS16465's said "white noise: not given").
+# A sensor the sheet describes without any noise term gets a line (the accelerometer of a sheet
+# printing ranges only vanished from the output, while the ADIS16470's said "white noise: not
+# given").
 sigmatau_cli_test(NAME cli_convert_sensor_without_noise_terms EXIT 0
   STDOUT "gyro: f_s = 100 Hz.*accel: not given \\(the sheet describes it but prints no noise density"
-  ARGS convert --spec bosch_bmi088 --rate 100)
+  ARGS convert --spec ${PROJECT_SOURCE_DIR}/tests/data/specs/gyro_noise_only.yaml --rate 100)

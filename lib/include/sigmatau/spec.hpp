@@ -48,6 +48,17 @@ struct PrintedValue {
   std::int64_t column = 0;  ///< 1-based column of the value in the file
 };
 
+/// What a sheet prints for one axis where it prints the axes apart (the BMI088's accelerometer
+/// noise density: 160 µg/√Hz on X and Y, 190 µg/√Hz on Z). The entry's source, page and table
+/// hold for it.
+struct AxisValue {
+  std::string axis;  ///< "x", "y" or "z"
+  std::optional<PrintedValue> min;
+  std::optional<PrintedValue> typ;
+  std::optional<PrintedValue> max;
+  std::string condition;  ///< as printed for that axis, may be empty
+};
+
 /// One data-sheet entry: min / typ / max where printed (at least one of them, or options), the
 /// condition it holds under and its source.
 struct SpecValue {
@@ -62,6 +73,13 @@ struct SpecValue {
   std::string page;       ///< page in the source ("12"), may be empty for a secondary source
   std::string table;      ///< table or section in the source, may be empty
   std::int64_t line = 0;  ///< 1-based line of the field's key in the file
+  /// Axes printed apart (`axes:` in the file); min / typ / max above hold for the other axes.
+  std::vector<AxisValue> axes;
+
+  /// This entry as it holds for one axis ("x", "y", "z"): that axis's min / typ / max and
+  /// condition in place of the entry's where the sheet prints the axis apart, else the entry
+  /// itself. Other names ("xy" of a cross-axis term) give the entry.
+  SpecValue for_axis(std::string_view axis) const;
 
   /// The bound a measurement is compared with: max when printed, else typ (then
   /// limit_is_typical() is true), else nullptr.
