@@ -93,6 +93,13 @@ void print_value(std::ostream& o, const SpecFieldInfo& info, const SpecValue& v)
   if (v.max) one("max    ", *v.max);
   for (const auto& p : v.options) one("option ", p);
   if (!v.condition.empty()) o << "    condition: " << v.condition << "\n";
+  for (const AxisValue& a : v.axes) {  // printed apart for this axis
+    o << "    axis " << a.axis << ":\n";
+    if (a.min) one("  min  ", *a.min);
+    if (a.typ) one("  typ  ", *a.typ);
+    if (a.max) one("  max  ", *a.max);
+    if (!a.condition.empty()) o << "      condition: " << a.condition << "\n";
+  }
   if (!v.note.empty()) o << "    note: " << v.note << "\n";
   o << "    source: " << source_text(v) << "\n";
 }

@@ -23,3 +23,7 @@ sigmatau_cli_test(NAME cli_specs_show_bad_unit EXIT 2
 sigmatau_cli_test(NAME cli_specs_show_typ_above_max EXIT 2
   STDERR "typ_above_max\\.yaml:13:10: gyro\\.bias_instability: found typ 5 deg/h > max 3 deg/h, expected typ <= max"
   ARGS specs show ${spec_fixtures}/typ_above_max.yaml)
+# An axis printed apart (`axes:`) is shown under its entry: the BMI088's Z accelerometer density.
+sigmatau_cli_test(NAME cli_specs_show_axis_values EXIT 0
+  STDOUT "typ     160 µg/√Hz [^\n]*\n    condition: X and Y axes[^\n]*\n    axis z:\n      typ   190 µg/√Hz"
+  ARGS specs show bosch_bmi088)
