@@ -172,11 +172,13 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
     }
     if (ref == segments.size()) continue;  // no segment has terms at m
     ConfidencePoint confidence;
-    confidence.noise = identify_noise(segments[ref], statistic, m);
     const std::int64_t averages = (segments[ref].size() - 1) / m;
-    if (!curve.points.empty() && averages <= previous_tau_noise_threshold(statistic)) {
-      confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
-      confidence.noise.method = NoiseIdentification::Method::previous_tau;
+    const std::int64_t kept_m = kept_noise_factor(statistic, segments[ref].size(), m);
+    if (m != kept_m && averages <= kept_noise_threshold(statistic)) {
+      confidence.noise.alpha = identify_noise(segments[ref], statistic, kept_m).alpha;
+      confidence.noise.method = NoiseIdentification::Method::kept;
+    } else {
+      confidence.noise = identify_noise(segments[ref], statistic, m);
     }
     std::vector<double> scale(segments.size(), 1.0);
     if (statistic == Statistic::totdev) {

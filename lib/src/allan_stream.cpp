@@ -23,6 +23,7 @@
 #include <limits>
 #include <string>
 
+#include "allan_curve_assembly.hpp"
 #include "allan_stream_curves.hpp"
 #include "allan_stream_levels.hpp"
 #include "allan_stream_noise.hpp"
@@ -278,8 +279,28 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
       }
     }
   }
+  // Where few averages remain, the curves take the type at kept_noise_factor, which depends on
+  // the final length: every factor it can be is identified, the powers of two below the
+  // largest m (each on its own level, so it reads consecutive points and keeps none) and, if an
+  // m is on the decade grid, that grid's factors below the largest such m.
+  std::int64_t largest = 1, largest_decade = 1;
+  for (const std::int64_t m : factors) {
+    largest = std::max(largest, m);
+    if (detail::on_decade_grid(m)) largest_decade = std::max(largest_decade, m);
+  }
+  const auto add_noise_factor = [&](std::int64_t m) {
+    if (std::find(s.noise_factors.begin(), s.noise_factors.end(), m) == s.noise_factors.end()) {
+      s.noise_factors.push_back(m);
+    }
+  };
+  for (std::int64_t m = 1; m < largest; m *= 2) add_noise_factor(m);
+  for (std::int64_t decade = 1; decade < largest_decade; decade *= 10) {
+    for (const std::int64_t step : {1, 2, 4}) {
+      if (step * decade < largest_decade) add_noise_factor(step * decade);
+    }
+  }
   std::sort(s.noise_factors.begin(), s.noise_factors.end());
-  int top = 0;
+  int top = log2_exact(power_of_two_floor(largest));
   for (const auto& tau : s.taus) top = std::max(top, tau.level);
   s.levels.resize(static_cast<std::size_t>(top) + 1);
   for (std::size_t j = 0; j < s.levels.size(); ++j) s.levels[j].stride = std::int64_t{1} << j;

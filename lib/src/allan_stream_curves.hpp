@@ -22,8 +22,8 @@ struct StreamTotals {
 };
 
 /// The curve of `statistic`: at each of its taus with terms, the deviation (SP 1065
-/// normalisation of the mean square), the noise type (the previous tau's once few averages
-/// remain, as compute_allan_curve), the strided EDF and the interval at `confidence_level`.
+/// normalisation of the mean square), the noise type (the one at kept_noise_factor once few
+/// averages remain, as compute_allan_curve), the strided EDF and the interval at `confidence_level`.
 AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double confidence_level);
 
 }  // namespace sigmatau::detail
