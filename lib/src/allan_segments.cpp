@@ -13,6 +13,7 @@
 #include <string>
 
 #include "parallel_items.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 
@@ -67,14 +68,24 @@ DeviationPoint pool(const std::vector<std::vector<DeviationPoint>>& points, std:
   DeviationPoint pooled;
   pooled.m = m;
   pooled.tau_s = static_cast<double>(m) * tau0_s;
+  // The deviations are pooled divided by a power of two (1 for ordinary values), so that their
+  // squares neither overflow nor underflow for extreme logs (phase_store.hpp).
+  double largest = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (points[k][i].n_terms > 0) largest = std::max(largest, points[k][i].dev);
+  }
+  const double unit = detail::value_scale_for(largest);
   double weighted = 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const DeviationPoint& p = points[k][i];
     if (p.n_terms <= 0) continue;
     pooled.n_terms += p.n_terms;
-    weighted += static_cast<double>(p.n_terms) * (p.dev * p.dev) * scale[k];
+    const double dev = p.dev / unit;
+    weighted += static_cast<double>(p.n_terms) * (dev * dev) * scale[k];
   }
-  pooled.dev = pooled.n_terms > 0 ? std::sqrt(weighted / static_cast<double>(pooled.n_terms)) : kNaN;
+  pooled.dev = pooled.n_terms > 0
+                   ? std::sqrt(weighted / static_cast<double>(pooled.n_terms)) * unit
+                   : kNaN;
   return pooled;
 }
 

@@ -19,6 +19,7 @@ struct StreamTotals {
   std::span<const StridedTerms> taus;           ///< every statistic and factor, terms finished
   std::span<const std::int64_t> noise_factors;  ///< ascending distinct m
   std::span<const NoiseSums> noise;             ///< the noise state of each of them
+  double value_scale = 1.0;  ///< the values were processed divided by this power of two
 };
 
 /// The curve of `statistic`: at each of its taus with terms, the deviation (SP 1065
