@@ -194,3 +194,14 @@ TEST_CASE("the noise fit of extreme samples gives the unit-scale model with its 
     }
   }
 }
+
+TEST_CASE("a deviation beyond the largest double is an Error naming the statistic and tau") {
+  // Phase points of 1e300 s one nanosecond apart: OADEV of order 1e309, not a double. The
+  // message said "deviation must be finite and >= 0, got inf".
+  std::vector<double> x = test::white(100, 0.0, 1.0, 17);
+  x = times(x, 1e300);
+  const PhaseSeries series = PhaseSeries::from_phase(x, 1e-9);
+  CHECK_THROWS_WITH_AS(compute_allan_curve(series, Statistic::oadev, octave(), 0.683),
+                       doctest::Contains("oadev at tau = 1e-09 s is beyond the largest double"),
+                       Error);
+}

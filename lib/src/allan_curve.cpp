@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -25,6 +26,15 @@ std::int64_t kept_noise_threshold(Statistic statistic) {
     case Statistic::totdev: return 3;
     default: return 7;
   }
+}
+
+void detail::check_representable(Statistic statistic, const DeviationPoint& point) {
+  if (std::isfinite(point.dev)) return;
+  char tau[32];
+  std::snprintf(tau, sizeof tau, "%.6g", point.tau_s);
+  throw Error(std::string(to_string(statistic)) + " at tau = " + tau +
+              " s is beyond the largest double (about 1.8e308 in its unit): the values are too "
+              "large for their sample interval; express them in another unit");
 }
 
 bool detail::on_decade_grid(std::int64_t m) {
@@ -87,6 +97,7 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
   // on m alone (never on which other taus were asked for); each such factor identified once.
   std::vector<std::pair<std::int64_t, int>> kept;  // (factor, alpha)
   for (DeviationPoint point : compute_deviation(series, statistic, factors)) {
+    detail::check_representable(statistic, point);
     ConfidencePoint confidence;
     const std::int64_t averages = (series.size() - 1) / point.m;
     const std::int64_t kept_m = kept_noise_factor(statistic, series.size(), point.m);

@@ -10,6 +10,11 @@
 
 namespace sigmatau::detail {
 
+/// Throws Error unless the deviation of `point` is finite: a deviation beyond the largest double
+/// (about 1.8e308) is not representable, whatever the scaling inside (values that large for
+/// their sample interval: another unit is the remedy).
+void check_representable(Statistic statistic, const DeviationPoint& point);
+
 /// Whether m >= 10 is on Stable32's decade grid 1, 2, 4, 10, 20, 40, 100, ... (the grid whose
 /// factors kept_noise_factor takes for such an m; the octave grid otherwise).
 bool on_decade_grid(std::int64_t m);

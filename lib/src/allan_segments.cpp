@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 
+#include "allan_curve_assembly.hpp"
 #include "parallel_items.hpp"
 #include "phase_store.hpp"
 #include "sigmatau/confidence.hpp"
@@ -198,6 +199,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
       }
     }
     const DeviationPoint pooled = pool(points, i, m, segments.front().tau0_s(), scale);
+    detail::check_representable(statistic, pooled);
     // Independent segments: their degrees of freedom add. A segment outside the EDF algorithm's
     // domain (NaN) adds nothing; if none is inside, the EDF and interval stay NaN.
     double edf = 0.0;

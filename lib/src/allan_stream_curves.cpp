@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "allan_curve_assembly.hpp"
 #include "sigmatau/allan_stream.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
@@ -76,6 +77,7 @@ AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double 
     variance *= scale * scale;
     CurvePoint point;
     point.value = {md * totals.tau0_s, tau.m, tau.terms, std::sqrt(variance) * totals.value_scale};
+    check_representable(statistic, point.value);
     const std::int64_t averages = (N - 1) / tau.m;
     const std::int64_t kept_m = kept_noise_factor(statistic, N, tau.m);
     if (tau.m != kept_m && averages <= kept_noise_threshold(statistic)) {

@@ -71,6 +71,11 @@ for term, p in a["parameters"].items():
 print("ok: fit model %s, %d values x %g" % (a["model_terms"], count, scale))
 PY
 done
+# A deviation itself beyond the largest double (phase of 1e300 s over 1 ns) is not representable:
+# a clear error naming the statistic and tau (before: "deviation must be finite and >= 0, got
+# inf").
+run adev "$W/s1e300.txt" --kind phase --rate 1e9 --stat oadev
+expect 2 "oadev at tau = 1e-09 s is beyond the largest double .*express them in another unit"
 run psd "$W/unit.txt" --rate 100
 expect 0 ''
 for scale in 1e-200 1e-160 1e155 1e300; do
