@@ -93,6 +93,20 @@ class ChannelFeed {
   std::int64_t rows_ = 0;
 };
 
+/// f(), with an Error it throws (a PSD beyond the range of a double) naming the input and the
+/// channel.
+template <class F>
+PsdCurve for_channel(const std::string& input, const std::string& channel, F&& f) {
+  try {
+    return f();
+  } catch (const ParseError&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error((input == "-" ? std::string("<stdin>") : input) + ": channel \"" + channel +
+                "\": " + e.what());
+  }
+}
+
 void check_phase_length(DataKind kind, std::int64_t rows) {
   if (kind == DataKind::phase && rows < 2) throw Error("phase input needs at least two samples");
 }
@@ -126,12 +140,15 @@ LogPsd in_memory_psd(const LogArguments& args, const WelchOptions& welch) {
       }
       std::vector<double>().swap(channel);
       const std::vector<std::span<const double>> stretches(rates.begin(), rates.end());
-      out.curves.push_back(welch_psd_stretches(stretches, loaded.rate_hz, welch));
+      out.curves.push_back(for_channel(args.input, loaded.log.channel_names[c], [&] {
+        return welch_psd_stretches(stretches, loaded.rate_hz, welch);
+      }));
       continue;
     }
     const auto rate = to_rate_series(std::move(channel), loaded.kind, loaded.rate_hz);
     std::vector<double>().swap(channel);
-    out.curves.push_back(welch_psd(rate, loaded.rate_hz, welch));
+    out.curves.push_back(for_channel(args.input, loaded.log.channel_names[c],
+                                     [&] { return welch_psd(rate, loaded.rate_hz, welch); }));
   }
   return out;
 }
@@ -232,8 +249,10 @@ std::optional<LogPsd> stream_pass(const LogArguments& args, const LogOptions& op
     recount = rows;
     return std::nullopt;
   }
-  for (ChannelFeed& feed : feeds) {
-    out.curves.push_back(feed.result());
+  for (std::size_t c = 0; c < feeds.size(); ++c) {
+    ChannelFeed& feed = feeds[c];
+    out.curves.push_back(
+        for_channel(args.input, input.log.channel_names[c], [&] { return feed.result(); }));
     out.constant_value.push_back(feed.constant_value());
   }
   out.outlier_warnings = outliers.finish();

@@ -1,5 +1,5 @@
 // Whole curves as Stable32 computes them: the noise type per tau (including Stable32's rule of
-// keeping the previous tau's type once few averages remain), the TOTDEV bias correction with that
+// keeping an earlier tau's type once few averages remain, kept_noise_factor), the TOTDEV bias correction with that
 // noise type, and the 68.3 % bounds, row by row against Stable32 tables with error bars.
 //
 // Tolerances (relative), and why:

@@ -76,8 +76,10 @@ struct KnownAlphaDifference {
 // Once fewer than about 8 non-overlapping averages remain (K = floor((N-1)/m) <= 7; K <= 9 for
 // the non-overlapping ADEV/HDEV; K <= 3 for TOTDEV), Stable32 reports the noise type of the
 // previous, shorter tau of the run instead of the B1-ratio result at this tau. compute_allan_curve
-// does the same, and the noise types are taken from a curve over each table's taus, so every row
-// where Stable32 kept the previous type (16 groups of rows, listed here before) is reproduced.
+// takes the type at kept_noise_factor, the longest tau of m's grid (decade or octave) with more
+// averages, which on these octave and decade runs is Stable32's previous tau; the noise types are
+// taken from a curve over each table's taus, so every row where Stable32 kept the previous type
+// (16 groups of rows, listed here before) is reproduced.
 // What is left:
 const KnownAlphaDifference kKnownAlphaDifferences[] = {
     {"allantools/Cs5071A", "totdev_decade.txt", 0,
@@ -233,8 +235,8 @@ void check_table(const Table& table, const PhaseSeries& series, Summary& summary
   for (const auto& row : rows) ms.push_back(row.m);
   const auto points = compute_deviation(series, table.statistic, ms);
   REQUIRE(points.size() == rows.size());
-  // The noise types as a run over the table's taus identifies them (compute_allan_curve keeps
-  // the previous tau's type once few averages remain, as Stable32 does).
+  // The noise types as a run over the table's taus identifies them (once few averages remain,
+  // compute_allan_curve takes the type of kept_noise_factor, Stable32's previous tau here).
   TauSpec taus;
   taus.kind = TauSpec::Kind::explicit_seconds;
   for (const auto m : ms) taus.seconds.push_back(static_cast<double>(m) * series.tau0_s());
@@ -279,7 +281,7 @@ void check_table(const Table& table, const PhaseSeries& series, Summary& summary
       std::printf("%-55s %6lld a= %d s32= %d %c edf %10.3f dev %+.1e lo %+.1e hi %+.1e rlo %+.1e rhi %+.1e tol %.1e %.1e\n",
                   rel.c_str(), static_cast<long long>(row.m), noise.alpha, row.alpha,
                   noise.method == NoiseIdentification::Method::lag1_acf       ? 'A'
-                  : noise.method == NoiseIdentification::Method::previous_tau ? 'P'
+                  : noise.method == NoiseIdentification::Method::kept ? 'P'
                                                                                : 'B',
                   edf,
                   point.dev / row.sigma - 1, e_lo, e_hi, r_lo, r_hi, s32_lo, s32_hi);

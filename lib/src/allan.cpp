@@ -10,7 +10,9 @@
 //                                                          floor((N-1)/m)-2 (stride m)
 //   TOTVAR (eq. 25):        sum over i = 1..N-2 of (x*[i-m] - 2x*[i] + x*[i+m])^2 / (2 (N-2)) * s^2
 //                           with the doubly reflected phase x*; no bias correction.
-// D2, D3, V and x* are defined in allan_sums.hpp. With rate data the rate form of each formula
+// D2, D3, V and x* are defined in allan_sums.hpp. The phase of a log with values beyond about
+// 1e-100..1e100 is held divided by a power of two (phase_store.hpp value_scale), by which each
+// deviation is multiplied back. With rate data the rate form of each formula
 // (differences of m-sample means) is the same number: s = 1/m and the phase is in samples x unit.
 #include "sigmatau/allan.hpp"
 
@@ -19,6 +21,7 @@
 #include <string>
 
 #include "allan_sums.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
@@ -116,6 +119,7 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
       break;
   }
 
+  const double value_scale = series.store().value_scale;
   std::vector<DeviationPoint> points;
   points.reserve(m.size());
   for (const std::int64_t factor : m) {
@@ -138,7 +142,8 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
         variance = mean_square / (2.0 * md * md) * scale * scale * (tau * tau / 3.0);
         break;
     }
-    points.push_back({tau, factor, counts[t], std::sqrt(variance)});
+    // The phase is held divided by value_scale (1 for ordinary logs; phase_store.hpp).
+    points.push_back({tau, factor, counts[t], std::sqrt(variance) * value_scale});
   }
   return points;
 }

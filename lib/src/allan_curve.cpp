@@ -1,8 +1,12 @@
 // Composition of the exact estimators and their confidence intervals, channel-parallel.
 #include "sigmatau/allan_curve.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "allan_curve_assembly.hpp"
@@ -11,12 +15,10 @@
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
-namespace {
-
-/// Stable32 keeps the previous tau's noise type once few non-overlapping averages
-/// K = floor((N-1)/m) remain: K <= 9 for ADEV and HDEV, K <= 3 for TOTDEV, K <= 7 otherwise.
-/// Observed on every Stable32 table with error bars in ../shared/data (see
-/// tests/test_confidence_reference.cpp); a B1 ratio from so few averages is itself unreliable.
+/// Stable32 stops identifying the noise once few non-overlapping averages K = floor((N-1)/m)
+/// remain: K <= 9 for ADEV and HDEV, K <= 3 for TOTDEV, K <= 7 otherwise. Observed on every
+/// Stable32 table with error bars in ../shared/data (see tests/test_confidence_reference.cpp); a
+/// B1 ratio from so few averages is itself unreliable.
 std::int64_t kept_noise_threshold(Statistic statistic) {
   switch (statistic) {
     case Statistic::adev:
@@ -26,10 +28,39 @@ std::int64_t kept_noise_threshold(Statistic statistic) {
   }
 }
 
-}  // namespace
+void detail::check_representable(Statistic statistic, const DeviationPoint& point) {
+  if (std::isfinite(point.dev)) return;
+  char tau[32];
+  std::snprintf(tau, sizeof tau, "%.6g", point.tau_s);
+  throw Error(std::string(to_string(statistic)) + " at tau = " + tau +
+              " s is beyond the largest double (about 1.8e308 in its unit): the values are too "
+              "large for their sample interval; express them in another unit");
+}
 
-std::int64_t previous_tau_noise_threshold(Statistic statistic) {
-  return kept_noise_threshold(statistic);
+bool detail::on_decade_grid(std::int64_t m) {
+  if (m < 10) return false;
+  while (m % 10 == 0) m /= 10;
+  return m == 1 || m == 2 || m == 4;
+}
+
+std::int64_t kept_noise_factor(Statistic statistic, std::int64_t phase_points, std::int64_t m) {
+  const std::int64_t threshold = kept_noise_threshold(statistic);
+  const auto enough = [&](std::int64_t g) { return (phase_points - 1) / g > threshold; };
+  std::int64_t kept = 1;
+  if (detail::on_decade_grid(m)) {
+    // 1, 2, 4, 10, 20, 40, ...: each step at most 2.5x, so g cannot overflow before (N-1)/g
+    // falls to the threshold.
+    for (std::int64_t decade = 1;; decade *= 10) {
+      for (const std::int64_t step : {1, 2, 4}) {
+        if (!enough(step * decade)) return kept;
+        kept = step * decade;
+      }
+    }
+  }
+  // Doubling stops before (N-1)/(2 kept) falls to the threshold; 2 kept cannot overflow because
+  // (N-1)/(2 kept) > threshold >= 3 bounds it by N/4.
+  while (enough(2 * kept)) kept *= 2;
+  return kept;
 }
 
 std::int64_t record_points(const PhaseSeries& series) {
@@ -62,13 +93,22 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
   AllanCurve curve;
   curve.statistic = statistic;
   curve.confidence_level = confidence_level;
+  // Where few averages remain, the type identified at a factor that depends on the record and
+  // on m alone (never on which other taus were asked for); each such factor identified once.
+  std::vector<std::pair<std::int64_t, int>> kept;  // (factor, alpha)
   for (DeviationPoint point : compute_deviation(series, statistic, factors)) {
+    detail::check_representable(statistic, point);
     ConfidencePoint confidence;
-    confidence.noise = identify(point.m);
     const std::int64_t averages = (series.size() - 1) / point.m;
-    if (!curve.points.empty() && averages <= kept_noise_threshold(statistic)) {
-      confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
-      confidence.noise.method = NoiseIdentification::Method::previous_tau;
+    const std::int64_t kept_m = kept_noise_factor(statistic, series.size(), point.m);
+    if (point.m != kept_m && averages <= kept_noise_threshold(statistic)) {
+      auto it = std::find_if(kept.begin(), kept.end(),
+                             [&](const auto& k) { return k.first == kept_m; });
+      if (it == kept.end()) it = kept.insert(kept.end(), {kept_m, identify(kept_m).alpha});
+      confidence.noise.alpha = it->second;
+      confidence.noise.method = NoiseIdentification::Method::kept;
+    } else {
+      confidence.noise = identify(point.m);
     }
     if (statistic == Statistic::totdev) {
       point.dev /= std::sqrt(totvar_bias(confidence.noise.alpha, point.m, series));

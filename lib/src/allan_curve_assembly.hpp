@@ -10,9 +10,17 @@
 
 namespace sigmatau::detail {
 
-/// compute_allan_curve with the noise at averaging factor m identified by identify(m) (before
-/// the curve-level rule that keeps the previous tau's type once few averages remain) and the
-/// EDF from `edf_model`.
+/// Throws Error unless the deviation of `point` is finite: a deviation beyond the largest double
+/// (about 1.8e308) is not representable, whatever the scaling inside (values that large for
+/// their sample interval: another unit is the remedy).
+void check_representable(Statistic statistic, const DeviationPoint& point);
+
+/// Whether m >= 10 is on Stable32's decade grid 1, 2, 4, 10, 20, 40, 100, ... (the grid whose
+/// factors kept_noise_factor takes for such an m; the octave grid otherwise).
+bool on_decade_grid(std::int64_t m);
+
+/// compute_allan_curve with the noise at averaging factor m identified by identify(m) (called
+/// at kept_noise_factor instead where few averages remain) and the EDF from `edf_model`.
 AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
                                 const TauSpec& taus, double confidence_level, EdfModel edf_model,
                                 const std::function<NoiseIdentification(std::int64_t)>& identify);

@@ -12,7 +12,9 @@
 #include <limits>
 #include <string>
 
+#include "allan_curve_assembly.hpp"
 #include "parallel_items.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 
@@ -67,14 +69,24 @@ DeviationPoint pool(const std::vector<std::vector<DeviationPoint>>& points, std:
   DeviationPoint pooled;
   pooled.m = m;
   pooled.tau_s = static_cast<double>(m) * tau0_s;
+  // The deviations are pooled divided by a power of two (1 for ordinary values), so that their
+  // squares neither overflow nor underflow for extreme logs (phase_store.hpp).
+  double largest = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (points[k][i].n_terms > 0) largest = std::max(largest, points[k][i].dev);
+  }
+  const double unit = detail::value_scale_for(largest);
   double weighted = 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const DeviationPoint& p = points[k][i];
     if (p.n_terms <= 0) continue;
     pooled.n_terms += p.n_terms;
-    weighted += static_cast<double>(p.n_terms) * (p.dev * p.dev) * scale[k];
+    const double dev = p.dev / unit;
+    weighted += static_cast<double>(p.n_terms) * (dev * dev) * scale[k];
   }
-  pooled.dev = pooled.n_terms > 0 ? std::sqrt(weighted / static_cast<double>(pooled.n_terms)) : kNaN;
+  pooled.dev = pooled.n_terms > 0
+                   ? std::sqrt(weighted / static_cast<double>(pooled.n_terms)) * unit
+                   : kNaN;
   return pooled;
 }
 
@@ -172,11 +184,13 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
     }
     if (ref == segments.size()) continue;  // no segment has terms at m
     ConfidencePoint confidence;
-    confidence.noise = identify_noise(segments[ref], statistic, m);
     const std::int64_t averages = (segments[ref].size() - 1) / m;
-    if (!curve.points.empty() && averages <= previous_tau_noise_threshold(statistic)) {
-      confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
-      confidence.noise.method = NoiseIdentification::Method::previous_tau;
+    const std::int64_t kept_m = kept_noise_factor(statistic, segments[ref].size(), m);
+    if (m != kept_m && averages <= kept_noise_threshold(statistic)) {
+      confidence.noise.alpha = identify_noise(segments[ref], statistic, kept_m).alpha;
+      confidence.noise.method = NoiseIdentification::Method::kept;
+    } else {
+      confidence.noise = identify_noise(segments[ref], statistic, m);
     }
     std::vector<double> scale(segments.size(), 1.0);
     if (statistic == Statistic::totdev) {
@@ -185,6 +199,7 @@ AllanCurve compute_segmented_allan_curve(std::span<const PhaseSeries> segments,
       }
     }
     const DeviationPoint pooled = pool(points, i, m, segments.front().tau0_s(), scale);
+    detail::check_representable(statistic, pooled);
     // Independent segments: their degrees of freedom add. A segment outside the EDF algorithm's
     // domain (NaN) adds nothing; if none is inside, the EDF and interval stay NaN.
     double edf = 0.0;

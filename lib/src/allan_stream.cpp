@@ -23,7 +23,9 @@
 #include <limits>
 #include <string>
 
+#include "allan_curve_assembly.hpp"
 #include "allan_stream_curves.hpp"
+#include "phase_store.hpp"
 #include "allan_stream_levels.hpp"
 #include "allan_stream_noise.hpp"
 #include "allan_stream_phase.hpp"
@@ -90,6 +92,8 @@ struct AllanStream::Impl {
   std::int64_t samples = 0;     // values added
   std::int64_t points = 0;      // phase points emitted
   std::vector<double> pending;  // input not yet processed (less than kChunk samples)
+  double value_scale = 0.0;     // the values are processed divided by it; 0 before the first chunk
+  std::vector<double> scaled;   // a chunk divided by value_scale (value_scale != 1 only)
 
   std::int64_t stride_for(Statistic s, std::int64_t m) const {
     const std::int64_t dividing = largest_power_of_two_dividing(m);
@@ -101,6 +105,19 @@ struct AllanStream::Impl {
   /// Integrates a chunk into level 0 (its new points, and P before each for MDEV), then feeds
   /// the coarser levels, the sums and the noise state.
   void process_chunk(std::span<const double> y) {
+    // Values beyond about 1e-100..1e100 are taken divided by a power of two chosen from the
+    // first chunk (phase_store.hpp value_scale_for; 1 for ordinary data, which is then
+    // untouched), so that squares and sums of squares stay in range; curves() multiplies back.
+    if (value_scale == 0.0) {
+      double largest = 0.0;
+      for (const double v : y) largest = std::max(largest, std::fabs(v));
+      value_scale = std::isfinite(largest) ? detail::value_scale_for(largest) : 1.0;
+    }
+    if (value_scale != 1.0) {
+      scaled.resize(y.size());
+      for (std::size_t i = 0; i < y.size(); ++i) scaled[i] = y[i] / value_scale;
+      y = scaled;
+    }
     const std::size_t count = phase.points_for(y.size());
     // The new points go straight to the end of level 0 (stride 1), which holds every point.
     Level& base = levels[0];
@@ -278,8 +295,28 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
       }
     }
   }
+  // Where few averages remain, the curves take the type at kept_noise_factor, which depends on
+  // the final length: every factor it can be is identified, the powers of two below the
+  // largest m (each on its own level, so it reads consecutive points and keeps none) and, if an
+  // m is on the decade grid, that grid's factors below the largest such m.
+  std::int64_t largest = 1, largest_decade = 1;
+  for (const std::int64_t m : factors) {
+    largest = std::max(largest, m);
+    if (detail::on_decade_grid(m)) largest_decade = std::max(largest_decade, m);
+  }
+  const auto add_noise_factor = [&](std::int64_t m) {
+    if (std::find(s.noise_factors.begin(), s.noise_factors.end(), m) == s.noise_factors.end()) {
+      s.noise_factors.push_back(m);
+    }
+  };
+  for (std::int64_t m = 1; m < largest; m *= 2) add_noise_factor(m);
+  for (std::int64_t decade = 1; decade < largest_decade; decade *= 10) {
+    for (const std::int64_t step : {1, 2, 4}) {
+      if (step * decade < largest_decade) add_noise_factor(step * decade);
+    }
+  }
   std::sort(s.noise_factors.begin(), s.noise_factors.end());
-  int top = 0;
+  int top = log2_exact(power_of_two_floor(largest));
   for (const auto& tau : s.taus) top = std::max(top, tau.level);
   s.levels.resize(static_cast<std::size_t>(top) + 1);
   for (std::size_t j = 0; j < s.levels.size(); ++j) s.levels[j].stride = std::int64_t{1} << j;
@@ -366,7 +403,8 @@ std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {
   }
   const Impl& s = copy ? *copy : *impl_;
   const std::vector<StridedTerms> taus = s.finished_taus();
-  detail::StreamTotals totals{s.kind, s.tau0_s, s.points, taus, s.noise_factors, s.noise};
+  detail::StreamTotals totals{s.kind,          s.tau0_s, s.points, taus, s.noise_factors,
+                              s.noise,         s.value_scale == 0.0 ? 1.0 : s.value_scale};
   std::vector<AllanCurve> result;
   for (const Statistic statistic : s.settings.statistics) {
     result.push_back(detail::stream_curve(statistic, totals, confidence_level));

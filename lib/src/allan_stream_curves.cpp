@@ -5,21 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "allan_curve_assembly.hpp"
 #include "sigmatau/allan_stream.hpp"
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau {
-namespace {
-
-/// compute_allan_curve keeps the previous tau's noise type once floor((N-1)/m) averages are at
-/// most this many (allan_curve.cpp, from Stable32).
-std::int64_t stream_kept_noise_threshold(Statistic s) {
-  return (s == Statistic::adev || s == Statistic::hdev) ? 9 : 7;
-}
-
-}  // namespace
-
 double strided_equivalent_dof(Statistic statistic, int alpha, std::int64_t m, std::int64_t s,
                               std::int64_t n_phase_points) {
   if (!(s >= 1 && m >= s && m % s == 0)) {
@@ -49,6 +40,14 @@ AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double 
   curve.statistic = statistic;
   curve.confidence_level = confidence_level;
   const std::int64_t max_m = max_averaging_factor(statistic, N, totals.kind);
+  // The noise type as compute_allan_curve takes it (every power of two is identified, and
+  // every factor of the decade grid in a decade run).
+  const auto identify_at = [&](std::int64_t m) {
+    const auto it = std::lower_bound(totals.noise_factors.begin(), totals.noise_factors.end(), m);
+    SIGMATAU_ASSERT(it != totals.noise_factors.end() && *it == m, "noise state for every m");
+    return totals.noise[static_cast<std::size_t>(it - totals.noise_factors.begin())].identify(
+        statistic, totals.kind, m, totals.tau0_s);
+  };
   for (const auto& tau : totals.taus) {
     if (tau.statistic != statistic || tau.m > max_m || tau.terms <= 0) continue;
     const double md = static_cast<double>(tau.m);
@@ -77,16 +76,15 @@ AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double 
     }
     variance *= scale * scale;
     CurvePoint point;
-    point.value = {md * totals.tau0_s, tau.m, tau.terms, std::sqrt(variance)};
-    const auto it =
-        std::lower_bound(totals.noise_factors.begin(), totals.noise_factors.end(), tau.m);
-    point.confidence.noise =
-        totals.noise[static_cast<std::size_t>(it - totals.noise_factors.begin())].identify(
-            statistic, totals.kind, tau.m, totals.tau0_s);
+    point.value = {md * totals.tau0_s, tau.m, tau.terms, std::sqrt(variance) * totals.value_scale};
+    check_representable(statistic, point.value);
     const std::int64_t averages = (N - 1) / tau.m;
-    if (!curve.points.empty() && averages <= stream_kept_noise_threshold(statistic)) {
-      point.confidence.noise.alpha = curve.points.back().confidence.noise.alpha;
-      point.confidence.noise.method = NoiseIdentification::Method::previous_tau;
+    const std::int64_t kept_m = kept_noise_factor(statistic, N, tau.m);
+    if (tau.m != kept_m && averages <= kept_noise_threshold(statistic)) {
+      point.confidence.noise.alpha = identify_at(kept_m).alpha;
+      point.confidence.noise.method = NoiseIdentification::Method::kept;
+    } else {
+      point.confidence.noise = identify_at(tau.m);
     }
     point.confidence.edf =
         strided_equivalent_dof(statistic, point.confidence.noise.alpha, tau.m, tau.stride, N);

@@ -19,11 +19,12 @@ struct StreamTotals {
   std::span<const StridedTerms> taus;           ///< every statistic and factor, terms finished
   std::span<const std::int64_t> noise_factors;  ///< ascending distinct m
   std::span<const NoiseSums> noise;             ///< the noise state of each of them
+  double value_scale = 1.0;  ///< the values were processed divided by this power of two
 };
 
 /// The curve of `statistic`: at each of its taus with terms, the deviation (SP 1065
-/// normalisation of the mean square), the noise type (the previous tau's once few averages
-/// remain, as compute_allan_curve), the strided EDF and the interval at `confidence_level`.
+/// normalisation of the mean square), the noise type (the one at kept_noise_factor once few
+/// averages remain, as compute_allan_curve), the strided EDF and the interval at `confidence_level`.
 AllanCurve stream_curve(Statistic statistic, const StreamTotals& totals, double confidence_level);
 
 }  // namespace sigmatau::detail

@@ -6,6 +6,12 @@
 //   x_0..x_{N-1}  phase points, N = M + 1, x_0 = 0, x_k = sum_{i<=k} (y_i - ybar)
 //   hi, lo     the double-double phase: x_k = hi[k] + lo[k] to ~2^-104 relative
 //
+// Scale: a log whose largest |value| is outside about 1e-100..1e100 is integrated divided by a
+// power of two s (phase_store.hpp value_scale_for), so that its squares neither overflow (from
+// about 1e154) nor become subnormal (below about 1e-154); the estimators multiply deviations by
+// s. Division by a power of two is exact, and s = 1 for ordinary logs, which are held bit for bit
+// as before.
+//
 // Every y_i - ybar is split exactly into two doubles (TwoSum) and added to the running
 // double-double sum, so the stored phase carries no rounding error of practical size, whatever the
 // offset of the data, the length of the log or the size of the phase (random walks).
@@ -34,6 +40,28 @@ constexpr std::int64_t kPrefixBlock = 4096;
 static_assert(kMeanBlock % kLanes == 0, "lane of sample i is i mod kLanes");
 
 void check_tau0(double tau0_s) { checked_interval_s(tau0_s, "sample interval tau0_s"); }
+
+/// The largest |v| (v finite), in kLanes lanes so that the loop vectorises.
+double largest_magnitude(std::span<const double> v, double largest) {
+  double lane[kLanes] = {};
+  const std::size_t n = v.size() - v.size() % kLanes;
+  for (std::size_t i = 0; i < n; i += kLanes) {
+    for (int k = 0; k < kLanes; ++k) {
+      const double a = std::fabs(v[i + static_cast<std::size_t>(k)]);
+      lane[k] = a > lane[k] ? a : lane[k];
+    }
+  }
+  for (std::size_t i = n; i < v.size(); ++i) largest = std::max(largest, std::fabs(v[i]));
+  for (const double a : lane) largest = std::max(largest, a);
+  return largest;
+}
+
+/// v / s into out (s a power of two: exact; divided, not multiplied by 1/s, which overflows
+/// for s below 2^-1024).
+void divide(std::span<const double> v, double s, std::vector<double>& out) {
+  out.resize(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) out[i] = v[i] / s;
+}
 
 /// Names the first non-finite value of v (index first + i in the whole log).
 [[noreturn]] void throw_non_finite(std::span<const double> v, std::int64_t first, const char* what) {
@@ -165,6 +193,9 @@ struct PhaseSeriesBuilder::State {
   std::shared_ptr<detail::PhaseStore> store;
   Prefix prefix;
   std::int64_t appended = 0;
+  double largest = 0.0;   // largest |value| seen by pass 1
+  double scale = 1.0;     // value_scale_for(largest), chosen when pass 2 starts
+  std::vector<double> scaled;  // pass 2's values divided by scale (scale != 1 only)
 };
 
 PhaseSeriesBuilder::PhaseSeriesBuilder(DataKind kind, PhaseStorage storage)
@@ -187,13 +218,16 @@ void PhaseSeriesBuilder::scan(std::span<const double> values) {
       st.x0 = values[0];
       if (!std::isfinite(st.x0)) throw_non_finite(values, 0, "phase");
     }
+    // Finite values only (their differences from x0 are formed after scaling, so values of
+    // opposite sign near the largest double do not overflow).
     double finite_check = 0.0;
-    for (const double v : values) finite_check += (v - st.x0) * 0.0;
+    for (const double v : values) finite_check += v * 0.0;
     if (!(finite_check == 0.0)) throw_non_finite(values, st.mean.count, "phase");
     st.mean.count += static_cast<std::int64_t>(values.size());
   } else {
     st.mean.add(values, "rate");
   }
+  st.largest = largest_magnitude(values, st.largest);
   st.last = values.back();
 }
 
@@ -202,9 +236,10 @@ void PhaseSeriesBuilder::append(std::span<const double> values) {
   const std::int64_t total = st.mean.count;
   if (!st.appending) {
     st.appending = true;
+    st.scale = detail::value_scale_for(st.largest);
     if (st.kind != DataKind::phase) {
       const double last[1] = {st.last};
-      st.prefix.ybar = st.mean.mean(last, "rate");
+      st.prefix.ybar = st.mean.mean(last, "rate") / st.scale;
     }
     const std::int64_t points = st.kind == DataKind::phase ? total : total + 1;
     st.store = std::make_shared<detail::PhaseStore>();
@@ -221,11 +256,16 @@ void PhaseSeriesBuilder::append(std::span<const double> values) {
     throw Error("PhaseSeriesBuilder: pass 2 delivered more samples (" +
                 std::to_string(st.appended + n) + ") than pass 1 (" + std::to_string(total) + ")");
   }
+  if (st.scale != 1.0) {
+    divide(values, st.scale, st.scaled);
+    values = st.scaled;
+  }
   double* hi = st.store->hi.data();
   double* lo = st.store->lo.data();
   if (st.kind == DataKind::phase) {
+    const double x0 = st.x0 / st.scale;
     for (std::int64_t k = 0; k < n; ++k) {
-      const detail::SumAndError d = detail::two_sum(values[k], -st.x0);  // x_k - x_0, exactly
+      const detail::SumAndError d = detail::two_sum(values[k], -x0);  // x_k - x_0, exactly
       hi[st.appended + k] = d.sum;
       lo[st.appended + k] = d.err;
     }
@@ -247,8 +287,9 @@ PhaseSeries PhaseSeriesBuilder::finish(double tau0_s) {
                 " samples, pass 1 " + std::to_string(st.mean.count));
   }
   PhaseSeries series(st.kind, tau0_s);
-  series.mean_rate_ = st.kind == DataKind::phase ? 0.0 : st.prefix.ybar;
+  series.mean_rate_ = st.kind == DataKind::phase ? 0.0 : st.prefix.ybar * st.scale;
   if (st.kind == DataKind::increment) series.mean_rate_ /= tau0_s;  // per sample -> per s
+  st.store->value_scale = st.scale;
   series.store_ = std::move(st.store);
   series.hi_ = series.store_->hi.data();
   series.lo_ = series.store_->lo.data();
@@ -256,7 +297,15 @@ PhaseSeries PhaseSeriesBuilder::finish(double tau0_s) {
   st.appending = false;
   st.mean = MeanAccumulator{};
   st.appended = 0;
+  st.largest = 0.0;
+  st.scale = 1.0;
+  st.scaled = {};
   return series;
+}
+
+double detail::value_scale_for(double largest) {
+  if (largest == 0.0 || (largest >= kUnscaledMin && largest <= kUnscaledMax)) return 1.0;
+  return std::ldexp(1.0, std::ilogb(largest));
 }
 
 bool PhaseSeries::spilled() const { return store_ && store_->hi.spilled(); }

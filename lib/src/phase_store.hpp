@@ -11,12 +11,27 @@
 
 namespace sigmatau::detail {
 
+/// Logs whose largest |value| lies in [kUnscaledMin, kUnscaledMax] (about 1.1e-100 to 8.7e99)
+/// are held as given: their squares, sums of squares over any log length and the double-double
+/// phase's low parts are far from overflow and from subnormal numbers. Others are divided by
+/// value_scale_for(largest |value|), a power of two, which is exact.
+inline constexpr double kUnscaledMin = 0x1p-332;
+inline constexpr double kUnscaledMax = 0x1p332;
+
+/// 1 for a largest |value| in [kUnscaledMin, kUnscaledMax] (or 0), else the power of two
+/// 2^floor(log2 largest) that brings it to [1, 2).
+double value_scale_for(double largest);
+
 struct CompactPhase;  // allan_sums.hpp (built in allan_sweep.cpp)
 
 struct PhaseStore {
   PhaseStorage storage;
   DoubleBuffer hi;
   DoubleBuffer lo;
+  /// A power of two: the phase held is the input's divided by it (phase_series.cpp, "Scale"),
+  /// 1 for every log whose largest |value| is within kUnscaledMin..kUnscaledMax. Estimators
+  /// multiply each deviation by it.
+  double value_scale = 1.0;
   /// The sweep copy (allan_sweep.cpp: compact_phase()), guarded by `mutex` while it is built or
   /// dropped; estimators hold a shared_ptr to it while they use it.
   std::mutex mutex;

@@ -16,11 +16,14 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <complex>
+#include <cstdio>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <string>
 
 #include "fftw_planner.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/sampling_limits.hpp"
 
@@ -143,6 +146,11 @@ struct WelchAccumulator::Impl {
   fftw_plan plan = nullptr;
   std::vector<double> power_sum;  // sum over segments of |X_k|^2
   std::int64_t segments = 0;
+  /// The segments are transformed divided by this power of two, chosen from the first segment
+  /// (phase_store.hpp value_scale_for: 1 unless its largest |x| is beyond about 1e-100..1e100,
+  /// so that |X_k|^2 neither overflows nor underflows); 0 before the first segment.
+  double value_scale = 0.0;
+  double largest = 0.0;  // largest |x| transformed, for the message of an unrepresentable PSD
 
   ~Impl() {
     std::lock_guard lock(detail::fftw_planner_mutex());
@@ -167,7 +175,15 @@ struct WelchAccumulator::Impl {
   }
 
   void process_segment(const double* x) {
-    for (std::int64_t n = 0; n < length; ++n) in[n] = x[n];
+    double segment_largest = 0.0;
+    for (std::int64_t n = 0; n < length; ++n) segment_largest = std::max(segment_largest, std::fabs(x[n]));
+    largest = std::max(largest, segment_largest);
+    if (value_scale == 0.0) value_scale = detail::value_scale_for(segment_largest);
+    if (value_scale == 1.0) {
+      for (std::int64_t n = 0; n < length; ++n) in[n] = x[n];
+    } else {
+      for (std::int64_t n = 0; n < length; ++n) in[n] = x[n] / value_scale;
+    }
     if (options.detrend == Detrend::mean) {
       double mean = 0;
       for (std::int64_t n = 0; n < length; ++n) mean += in[n];
@@ -281,7 +297,19 @@ PsdCurve WelchAccumulator::result() const {
   for (std::size_t k = 0; k < bins; ++k) {
     const bool edge = (k == 0) || (d.length % 2 == 0 && k == bins - 1);
     curve.frequency_hz.push_back(static_cast<double>(k) * d.rate_hz / static_cast<double>(d.length));
-    curve.psd.push_back((edge ? 1.0 : 2.0) * scale * d.power_sum[k]);
+    // Multiplied back by value_scale^2 in two steps (its square alone may overflow); 1 for
+    // ordinary data, where this changes no bit.
+    const double value = (edge ? 1.0 : 2.0) * scale * d.power_sum[k] * d.value_scale * d.value_scale;
+    if (!std::isfinite(value) || (d.power_sum[k] > 0 && value < std::numeric_limits<double>::min())) {
+      char largest[32];
+      std::snprintf(largest, sizeof largest, "%.3g", d.largest);
+      throw Error(std::string("PSD: the samples reach |x| = ") + largest +
+                  ", whose power spectral density is beyond the range of a double (about "
+                  "1e-308 to 1e308 unit^2/Hz); a PSD is computed where |x|^2 / rate stays in that "
+                  "range (|x| from about 1e-150 to 1e150 at 1 Hz): express the samples in "
+                  "another unit");
+    }
+    curve.psd.push_back(value);
     curve.edf.push_back(edge ? edf_bin / 2 : edf_bin);
   }
   return curve;

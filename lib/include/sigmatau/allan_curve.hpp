@@ -23,9 +23,19 @@ double totvar_bias(int alpha, std::int64_t m, const PhaseSeries& series);
 /// phase input (used by totvar_bias and by TOTDEV's EDF).
 std::int64_t record_points(const PhaseSeries& series);
 
-/// Averages K = floor((N-1)/m) at or below which compute_allan_curve keeps the previous tau's
-/// noise type (Stable32's convention): 9 for adev and hdev, 3 for totdev, 7 otherwise.
-std::int64_t previous_tau_noise_threshold(Statistic statistic);
+/// Averages K = floor((N-1)/m) at or below which compute_allan_curve does not identify the noise
+/// at m but takes the type identified at kept_noise_factor (Stable32's convention): 9 for adev
+/// and hdev, 3 for totdev, 7 otherwise.
+std::int64_t kept_noise_threshold(Statistic statistic);
+
+/// The averaging factor whose noise type is used at m where K <= kept_noise_threshold: the
+/// largest factor of m's grid with floor((N-1)/factor) above the threshold (1 if none), N the
+/// phase points. m's grid is Stable32's decade grid (1, 2, 4, 10, 20, 40, 100, ...) for m >= 10
+/// on it, else the octave grid (powers of two). Stable32 keeps the type of the previous tau of
+/// its run, which on octave and decade runs is this factor (every Stable32 table in
+/// ../shared/data agrees); depending on the record and m alone, the type at one tau does not
+/// depend on which other taus were asked for (1024 alone and 512 with 1024 give 1024 one type).
+std::int64_t kept_noise_factor(Statistic statistic, std::int64_t phase_points, std::int64_t m);
 
 /// One point: the deviation and its confidence interval (in the series' rate unit; TDEV in its
 /// phase unit).
@@ -44,8 +54,8 @@ struct AllanCurve {
 /// The statistic at the averaging factors of `taus`, with intervals at `confidence_level`
 /// (in (0, 1); Error otherwise). Averaging factors with no terms are left out.
 /// Stable32's conventions are followed: TOTDEV is divided by sqrt(totvar_bias) with the noise
-/// identified at that tau, and once few averages remain the previous tau's noise type is kept
-/// (NoiseIdentification::Method::previous_tau).
+/// identified at that tau, and once few averages remain the type identified at
+/// kept_noise_factor is used (NoiseIdentification::Method::kept).
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level,
                                EdfModel edf_model = EdfModel::greenhall);

@@ -19,8 +19,8 @@
 ///    squared differences (its reflected terms depend on where the record ends), so the pooled
 ///    value is not the TOTVAR of any single series; it is the natural unbiased combination.
 ///  - Noise type (for the EDF and the TOTDEV bias): identified with identify_noise on the
-///    segment with the most terms at m (the longest), with Stable32's previous-tau rule
-///    (previous_tau_noise_threshold) applied to that segment's number of averages.
+///    segment with the most terms at m (the longest); where that segment has few averages at m
+///    (kept_noise_threshold), the type identified on it at its kept_noise_factor.
 ///  - EDF: segments are independent, so their EDFs add: sum over the segments with terms at m
 ///    of equivalent_dof(statistic, alpha, m, N_k) (TOTDEV: record_points of the segment, as
 ///    compute_allan_curve does). The interval is chi_squared_interval on the pooled deviation.

@@ -28,9 +28,10 @@ namespace sigmatau {
 /// Identified power-law noise at one averaging factor.
 struct NoiseIdentification {
   int alpha = 0;             ///< integer exponent in [-2, 2]
-  /// previous_tau: too few averages for a reliable estimate at this tau, so the noise type of
-  /// the previous (shorter) tau of the curve is kept, as Stable32 does (compute_allan_curve).
-  enum class Method { lag1_acf, b1_ratio, assumed, previous_tau } method = Method::lag1_acf;
+  /// kept: too few averages for a reliable estimate at this tau, so the noise type identified
+  /// at a shorter tau that depends on the record alone (kept_noise_factor in allan_curve.hpp) is
+  /// used, as Stable32 keeps its previous tau's type on an octave run (compute_allan_curve).
+  enum class Method { lag1_acf, b1_ratio, assumed, kept } method = Method::lag1_acf;
 };
 
 /// Identifies the dominant power-law noise at averaging factor m the way Stable32 does: lag-1
