@@ -219,8 +219,11 @@ Log read_log(const LogOptions& options,
   // the first block, else from the bytes per row of the first block (a plain text file;
   // generous, since capacity never written costs address space, not memory). Grown by
   // reallocation instead, every step copies all that was read and holds both copies at once.
+  // One row more than the input holds: a rate channel's phase has one point more than its
+  // samples, so the samples' memory can then hold an array of the phase (PhaseSeries::recycle).
   const auto reserve_rows = [&](std::int64_t rows) {
-    const auto size = static_cast<std::size_t>(rows) + (log.channels.empty() ? 0 : log.channels[0].size());
+    const auto size = static_cast<std::size_t>(rows) + 1 +
+                      (log.channels.empty() ? 0 : log.channels[0].size());
     for (auto& channel : log.channels) channel.reserve(size);
     if (reader.has_time()) log.t_s.reserve(size);
   };
