@@ -362,7 +362,7 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
 }
 
 /// Exact mode in memory on a log without gaps: every channel's phase, then the curves. The raw
-/// samples are released channel by channel as their phase is built.
+/// samples' memory goes to each channel's phase for its sweep copy as the phase is built.
 std::vector<std::vector<AllanCurve>> whole_log_curves(const AdevArguments& args,
                                                       const std::vector<Statistic>& stats,
                                                       const TauSpec& taus, EdfModel edf_model,
@@ -371,6 +371,8 @@ std::vector<std::vector<AllanCurve>> whole_log_curves(const AdevArguments& args,
   series.reserve(loaded.log.channels.size());
   for (auto& channel : loaded.log.channels) {
     series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+    // The samples' memory (read_log leaves room for one more point) becomes the sweep copy's.
+    series.back().recycle(std::move(channel));
     std::vector<double>().swap(channel);
   }
   return curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,

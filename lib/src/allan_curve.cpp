@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 #include <string>
@@ -36,6 +37,15 @@ void detail::check_representable(Statistic statistic, const DeviationPoint& poin
               " s is beyond the largest double (about 1.8e308 in its unit): the values are too "
               "large for their sample interval; express them in another unit");
 }
+
+namespace {
+
+/// Most factors identified by the one pass (acf_first_steps), the smallest ones: the pass keeps
+/// a few hundred bytes of sums per factor and visits every factor once per block of the phase,
+/// and the larger factors' series are short enough to build.
+constexpr std::size_t kFirstStepFactors = 64;
+
+}  // namespace
 
 bool detail::on_decade_grid(std::int64_t m) {
   if (m < 10) return false;
@@ -133,8 +143,24 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
   // pages per tau cost more in kernel zeroing than the identification itself.
   std::unique_ptr<double[]> scratch;
   std::int64_t capacity = 0;
+  // The smallest factors' identification (the costly ones: their series are long) is told by
+  // one pass over the phase for all of them (acf_first_steps: the same alpha, bit for bit)
+  // where it can; the others build their averaged series.
+  std::vector<std::int64_t> factors;
+  if (confidence_level > 0.0 && confidence_level < 1.0) {
+    factors = averaging_factors(taus, statistic, series.size(), series.tau0_s(), series.kind());
+  }
+  std::sort(factors.begin(), factors.end());
+  factors.erase(std::unique(factors.begin(), factors.end()), factors.end());
+  if (factors.size() > kFirstStepFactors) factors.resize(kFirstStepFactors);
+  const std::vector<std::optional<int>> first_steps = detail::acf_first_steps(series, factors);
   return detail::assemble_allan_curve(
       series, statistic, taus, confidence_level, edf_model, [&](std::int64_t m) {
+        const auto known = std::lower_bound(factors.begin(), factors.end(), m);
+        if (known != factors.end() && *known == m) {
+          const auto& alpha = first_steps[static_cast<std::size_t>(known - factors.begin())];
+          if (alpha) return detail::acf_identification(*alpha, statistic);
+        }
         const std::int64_t points = detail::averaged_series_points(series, m);
         if (points >= detail::kMinAcfPoints && points > capacity) {
           scratch.reset(new double[static_cast<std::size_t>(points)]);  // written before read

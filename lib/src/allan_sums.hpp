@@ -31,7 +31,9 @@ namespace sigmatau::detail {
 /// exact (double-double) difference of the bases, rounded once.
 /// The offsets live where the series does (memory, or a spilled file: PhaseStorage).
 struct CompactPhase {
-  explicit CompactPhase(const PhaseSeries& series);
+  /// Built in `memory` when it holds series.size() doubles and the series is not spilled,
+  /// else in fresh storage of the series' kind.
+  explicit CompactPhase(const PhaseSeries& series, std::vector<double> memory = {});
   DoubleBuffer offset;
   std::vector<DoubleDouble> base;
 };

@@ -349,8 +349,16 @@ void chain_sweep(const CompactPhase& phase, int order, std::span<const std::int6
 
 }  // namespace
 
-CompactPhase::CompactPhase(const PhaseSeries& series)
-    : offset(static_cast<std::size_t>(series.size()), series.store().storage) {
+namespace {
+DoubleBuffer compact_storage(const PhaseSeries& series, std::vector<double>&& memory) {
+  const auto n = static_cast<std::size_t>(series.size());
+  if (!series.spilled() && memory.capacity() >= n) return DoubleBuffer(std::move(memory), n);
+  return DoubleBuffer(n, series.store().storage);
+}
+}  // namespace
+
+CompactPhase::CompactPhase(const PhaseSeries& series, std::vector<double> memory)
+    : offset(compact_storage(series, std::move(memory))) {
   // The buffer asks for 2 MiB pages where Linux allows them (phase_spill.cpp): the sweep
   // touches ~15 distant places of the array per block, and with 4 KiB pages each costs TLB misses.
   const double* h = series.hi().data();
@@ -370,7 +378,10 @@ CompactPhase::CompactPhase(const PhaseSeries& series)
 std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series) {
   PhaseStore& store = series.store();
   std::lock_guard lock(store.mutex);
-  if (!store.compact) store.compact = std::make_shared<const CompactPhase>(series);
+  if (!store.compact) {
+    store.compact = std::make_shared<const CompactPhase>(series, std::move(store.recycled));
+    std::vector<double>().swap(store.recycled);
+  }
   return store.compact;
 }
 

@@ -2,6 +2,7 @@
 // the buffer holds whole records plus at most one partial record carried to the next read.
 #include "binary_log.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -147,6 +148,13 @@ std::int64_t BinaryLog::decode(SampleBlock& block, std::int64_t records) {
     ++kept;
   }
   return kept;
+}
+
+std::int64_t BinaryLog::records_left() const {
+  if (source_.gzip() || source_.total_bytes() < 0) return -1;
+  const std::int64_t bytes = source_.total_bytes() - skip_bytes_;
+  return std::max<std::int64_t>(
+      0, bytes / static_cast<std::int64_t>(record_bytes_) - records_);
 }
 
 std::int64_t BinaryLog::read_rows(SampleBlock& block, std::int64_t max_rows) {

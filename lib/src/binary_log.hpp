@@ -20,6 +20,11 @@ class BinaryLog {
   /// Appends up to max_rows records to `block`; returns the count, 0 at the end.
   std::int64_t read_rows(SampleBlock& block, std::int64_t max_rows);
 
+  /// Records still to read, from the file's size (a plain file, not gzip or a pipe), or -1 when
+  /// the input does not tell. An upper bound on the rows to come (skipped non-finite rows and a
+  /// file that grows aside).
+  std::int64_t records_left() const;
+
  private:
   bool fill();
   /// read_rows' loop: `rows` counts the records kept so far (also when it throws).

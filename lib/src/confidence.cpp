@@ -267,6 +267,13 @@ void fill_averaged_series(const PhaseSeries& series, std::int64_t m, double* out
   }
 }
 
+NoiseIdentification acf_identification(int alpha, Statistic statistic) {
+  NoiseIdentification result;
+  result.method = NoiseIdentification::Method::lag1_acf;
+  result.alpha = std::clamp(alpha, lowest_alpha(statistic), 2);
+  return result;
+}
+
 NoiseIdentification identify_noise_by_acf(double* z, std::size_t n, bool phase_input,
                                           Statistic statistic) {
   NoiseIdentification result;

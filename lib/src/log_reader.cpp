@@ -21,6 +21,14 @@ namespace {
 /// Largest read buffer accepted [bytes]: beyond 1 GiB a bigger buffer buys nothing and a typo
 /// would ask for absurd memory.
 constexpr std::int64_t kMaxBufferBytes = std::int64_t{1} << 30;
+/// A text file's rows estimated from the bytes per row of its first block, with this margin for
+/// longer rows later on (more digits, a longer time stamp): reserved address space, of which
+/// only what is written becomes memory.
+constexpr double kRowEstimateMargin = 1.25;
+/// Most rows reserved from an estimate (2^32, 32 GiB a channel): beyond, the arrays grow.
+constexpr std::int64_t kMaxReservedRows = std::int64_t{1} << 32;
+/// Rows added to that estimate, for a short last piece.
+constexpr double kRowEstimateSlack = 1024;
 
 }  // namespace
 
@@ -74,6 +82,7 @@ struct LogReader::Impl {
   std::unique_ptr<detail::BagLog> bag;
   const detail::ColumnSelection* selection = nullptr;
   bool finished = false;
+  std::int64_t rows_delivered = 0;
   mutable bool report_stale = true;
   mutable TimingReport report;
 
@@ -128,6 +137,7 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
                             : m.text ? m.text->read_rows(block, max_rows)
                                      : m.binary->read_rows(block, max_rows);
   m.report_stale = true;
+  m.rows_delivered += rows;
   if (rows == 0) {
     m.finished = true;
     try {
@@ -182,6 +192,21 @@ std::int64_t LogReader::bytes_read() const {
 std::int64_t LogReader::total_bytes() const {
   return impl_->bag ? impl_->bag->total_bytes() : impl_->source->total_bytes();
 }
+std::int64_t LogReader::rows_left_hint() const {
+  const Impl& m = *impl_;
+  if (m.binary) return m.binary->records_left();
+  if (!m.text || m.source->gzip() || m.rows_delivered == 0) return -1;
+  const std::int64_t total = m.source->total_bytes();
+  const std::int64_t done = m.source->bytes_consumed();
+  if (!(total > 0 && done > 0)) return -1;
+  // The reader's buffer runs ahead of the rows delivered: the bytes per row come out high and
+  // the estimate low, which the margin covers for rows of even length.
+  const double per_row = static_cast<double>(done) / static_cast<double>(m.rows_delivered);
+  const double estimate =
+      kRowEstimateMargin * static_cast<double>(total - done) / per_row + kRowEstimateSlack;
+  return estimate < static_cast<double>(kMaxReservedRows) ? static_cast<std::int64_t>(estimate)
+                                                          : -1;
+}
 
 Log read_log(const LogOptions& options,
              const std::function<void(std::int64_t, std::int64_t)>& progress) {
@@ -190,12 +215,33 @@ Log read_log(const LogOptions& options,
   log.path = options.path;
   log.channel_names = reader.channel_names();
   log.channels.resize(log.channel_names.size());
+  // The final arrays are sized once: where the input tells its length (a raw binary file) before
+  // the first block, else from the bytes per row of the first block (a plain text file;
+  // generous, since capacity never written costs address space, not memory). Grown by
+  // reallocation instead, every step copies all that was read and holds both copies at once.
+  // One row more than the input holds: a rate channel's phase has one point more than its
+  // samples, so the samples' memory can then hold an array of the phase (PhaseSeries::recycle).
+  const auto reserve_rows = [&](std::int64_t rows) {
+    const auto size = static_cast<std::size_t>(rows) + 1 +
+                      (log.channels.empty() ? 0 : log.channels[0].size());
+    for (auto& channel : log.channels) channel.reserve(size);
+    if (reader.has_time()) log.t_s.reserve(size);
+  };
+  bool sized = false;
+  if (const std::int64_t hint = reader.rows_left_hint(); hint > 0) {
+    reserve_rows(hint);
+    sized = true;
+  }
   SampleBlock block;
   while (reader.read_block(block)) {
     for (std::size_t c = 0; c < block.values.size(); ++c) {
       log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
     }
     log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+    if (!sized) {
+      sized = true;
+      if (const std::int64_t hint = reader.rows_left_hint(); hint > 0) reserve_rows(hint);
+    }
     if (progress) progress(reader.bytes_read(), reader.total_bytes());
   }
   log.timing = reader.timing();

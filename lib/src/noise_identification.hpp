@@ -5,6 +5,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
 
 #include "sigmatau/confidence.hpp"
 #include "sigmatau/phase_series.hpp"
@@ -34,5 +37,18 @@ NoiseIdentification identify_noise_with(const PhaseSeries& series, Statistic sta
 /// clamped to the range the statistic can resolve.
 NoiseIdentification identify_noise_by_acf(double* z, std::size_t n, bool phase_input,
                                           Statistic statistic);
+
+/// For each factor of m: the alpha, before clamping, that identify_noise_by_acf finds on the
+/// averaged series at that factor, when this one pass over the phase can tell it for certain
+/// (the identification ends after at most one difference and r1 is clear of every decision
+/// boundary: acf_first_steps.cpp); nullopt where it cannot, where the series has fewer than
+/// kMinAcfPoints points, and for a spilled phase. The statistic only clamps the alpha (its
+/// differencing limit is >= 2), so one call serves every statistic.
+std::vector<std::optional<int>> acf_first_steps(const PhaseSeries& series,
+                                                std::span<const std::int64_t> m);
+
+/// The identification identify_noise_by_acf returns for an unclamped alpha: method lag1_acf,
+/// alpha clamped to the range the statistic resolves.
+NoiseIdentification acf_identification(int alpha, Statistic statistic);
 
 }  // namespace sigmatau::detail

@@ -310,6 +310,13 @@ double detail::value_scale_for(double largest) {
 
 bool PhaseSeries::spilled() const { return store_ && store_->hi.spilled(); }
 
+void PhaseSeries::recycle(std::vector<double>&& memory) const {
+  if (!store_) return;
+  std::lock_guard lock(store_->mutex);
+  if (store_->compact || spilled() || memory.capacity() < static_cast<std::size_t>(size_)) return;
+  store_->recycled = std::move(memory);
+}
+
 void PhaseSeries::drop_sweep_cache() const {
   if (!store_) return;
   std::lock_guard lock(store_->mutex);

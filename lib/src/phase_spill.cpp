@@ -221,8 +221,20 @@ DoubleBuffer::DoubleBuffer(std::size_t n, const PhaseStorage& storage) : size_(n
 #endif
 }
 
+DoubleBuffer::DoubleBuffer(std::vector<double>&& memory, std::size_t n) : size_(n) {
+  SIGMATAU_ASSERT(memory.capacity() >= n, "the adopted memory holds n doubles");
+  adopted_ = std::move(memory);
+  data_ = n > 0 ? adopted_.data() : nullptr;
+}
+
 void DoubleBuffer::reset() noexcept {
   if (!data_) return;
+  if (!adopted_.empty() || adopted_.capacity() > 0) {
+    std::vector<double>().swap(adopted_);
+    data_ = nullptr;
+    size_ = 0;
+    return;
+  }
 #if defined(__linux__)
   if (spilled_) PageReleaser::instance().remove(data_);
   munmap(data_, mapped_bytes_);
@@ -241,7 +253,8 @@ DoubleBuffer::DoubleBuffer(DoubleBuffer&& other) noexcept
     : data_(std::exchange(other.data_, nullptr)),
       size_(std::exchange(other.size_, 0)),
       mapped_bytes_(std::exchange(other.mapped_bytes_, 0)),
-      spilled_(std::exchange(other.spilled_, false)) {}
+      spilled_(std::exchange(other.spilled_, false)),
+      adopted_(std::move(other.adopted_)) {}
 
 DoubleBuffer& DoubleBuffer::operator=(DoubleBuffer&& other) noexcept {
   if (this != &other) {
@@ -250,6 +263,7 @@ DoubleBuffer& DoubleBuffer::operator=(DoubleBuffer&& other) noexcept {
     size_ = std::exchange(other.size_, 0);
     mapped_bytes_ = std::exchange(other.mapped_bytes_, 0);
     spilled_ = std::exchange(other.spilled_, false);
+    adopted_ = std::move(other.adopted_);
   }
   return *this;
 }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "sigmatau/phase_series.hpp"
 
@@ -27,6 +28,9 @@ class DoubleBuffer {
   /// space cannot be reserved (posix_fallocate: a full disk is an error here, never a SIGBUS
   /// later), or when the mapping fails.
   DoubleBuffer(std::size_t n, const PhaseStorage& storage);
+  /// n doubles in the memory of `memory` (capacity >= n; its contents are left as they are),
+  /// which the buffer keeps: memory already faulted in is reused instead of fresh pages.
+  DoubleBuffer(std::vector<double>&& memory, std::size_t n);
   ~DoubleBuffer();
   DoubleBuffer(DoubleBuffer&& other) noexcept;
   DoubleBuffer& operator=(DoubleBuffer&& other) noexcept;
@@ -43,6 +47,7 @@ class DoubleBuffer {
   std::size_t size_ = 0;
   std::size_t mapped_bytes_ = 0;
   bool spilled_ = false;
+  std::vector<double> adopted_;  // the memory of the second constructor, else empty
 };
 
 /// Does the watchdog's check now, in the calling thread: drops the mappings of every spilled

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "phase_spill.hpp"
 #include "sigmatau/phase_series.hpp"
@@ -36,6 +37,9 @@ struct PhaseStore {
   /// dropped; estimators hold a shared_ptr to it while they use it.
   std::mutex mutex;
   std::shared_ptr<const CompactPhase> compact;
+  /// Memory handed back by the caller (PhaseSeries::recycle, under `mutex`): the sweep copy is
+  /// built in it when it holds the series' points, instead of in fresh pages.
+  std::vector<double> recycled;
 };
 
 }  // namespace sigmatau::detail

@@ -289,6 +289,11 @@ class LogReader {
   /// Both count the file as stored (compressed bytes for gzip).
   std::int64_t bytes_read() const;
   std::int64_t total_bytes() const;
+  /// Rows still to read, for sizing arrays once: for a raw binary file (not gzip, not a pipe)
+  /// its remaining size / record size, an upper bound (rows skipped as non-finite count); for a
+  /// plain text file, once a block has been read, an estimate from the bytes per row so far
+  /// (with a 25 % margin); -1 for gzip, pipes, bags and a text file before its first block.
+  std::int64_t rows_left_hint() const;
 
  private:
   struct Impl;

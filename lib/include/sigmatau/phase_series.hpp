@@ -102,6 +102,10 @@ class PhaseSeries {
   bool spilled() const;
   /// Frees the cached sweep copy of the phase (8 bytes per point; rebuilt on the next use).
   void drop_sweep_cache() const;
+  /// Hands the series memory it may keep for its sweep copy (typically the samples it was built
+  /// from, no longer needed: their values are overwritten): used, instead of fresh pages, when
+  /// its capacity holds size() doubles and the copy is not built yet; else freed at once.
+  void recycle(std::vector<double>&& memory) const;
   /// Internal (lib/src): the storage and its caches.
   detail::PhaseStore& store() const { return *store_; }
 
