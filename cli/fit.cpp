@@ -301,12 +301,8 @@ std::string render_table(const std::string& input, const std::vector<Channel>& c
     if (c.fit.readings) {
       out << "\n# " << c.name << ": the joint fit is " << c.fit.readings_reason
           << "; reported instead: the curve's own read-outs (IEEE 952: B from the minimum, N "
-             "from the -1/2 line)";
-      if (c.fit.slopes) {
-        out << ", the slopes table above\n";
-      } else {
-        table_for(out, c.name, c.sensor, *c.fit.readings, ci);
-      }
+             "from the -1/2 line; a line that crosses the curve lowered to touch it)";
+      table_for(out, c.name, c.sensor, *c.fit.readings, ci);
     }
   }
   for (const auto& t : triads) {
