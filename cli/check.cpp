@@ -159,7 +159,8 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
     } else {
       // A term not detected has only a bound: no estimate and no estimate margin ("-").
       const std::string note =
-          verdict_qualifiers(fail_within_uncertainty(item), item.measured.fit_p_value);
+          verdict_qualifiers(fail_within_uncertainty(item), item.measured.fit_p_value,
+                             item.measured.from_curve_readings);
       out << row({label(item), verdict, measured_cell(item, item.limit_unit),
                   interval_cell(item, item.limit_unit), limit_cell(item),
                   item.measured.detected ? ratio(item.margin) : "-", ratio_interval(item), note});
@@ -189,6 +190,10 @@ std::string table(const std::vector<ComplianceItem>& items, const DataSheet& she
   if (std::any_of(items.begin(), items.end(),
                   [](const ComplianceItem& i) { return fit_rejected(i.measured); })) {
     out << "# note: " << kFitRejectedNote << "\n";
+  }
+  if (std::any_of(items.begin(), items.end(),
+                  [](const ComplianceItem& i) { return i.measured.from_curve_readings; })) {
+    out << "# note: " << kCurveReadingNote << "\n";
   }
   if (any_typical_limit(items)) out << "# note: " << kTypicalLimitNote << "\n";
   if (any_failed(items)) {

@@ -53,7 +53,29 @@ struct Channel {
   std::string name;
   Sensor sensor = Sensor::gyro;
   NoiseFit fit;
+  AllanCurve curve;    ///< the curve fitted (SI)
+  CurveSource source;  ///< the log behind it
 };
+
+/// The fitted curve with the model beside each point: "model_dev" (the reported model) and,
+/// where the curve's read-outs stand in for the joint fit, "joint_model_dev".
+nlohmann::json curve_with_model_json(const Channel& c, const FitOptions& options) {
+  const auto model = model_deviation(c.fit.reported(), c.curve, c.source, options);
+  std::vector<double> joint_model;
+  if (c.fit.readings) joint_model = model_deviation(*c.fit.joint, c.curve, c.source, options);
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t j = 0; j < c.curve.points.size(); ++j) {
+    if (!std::isfinite(model[j])) continue;
+    const auto& p = c.curve.points[j];
+    nlohmann::json point = {{"tau", p.value.tau_s},
+                            {"m", p.value.m},
+                            {"dev", p.value.dev},
+                            {"model_dev", model[j]}};
+    if (!joint_model.empty()) point["joint_model_dev"] = joint_model[j];
+    points.push_back(point);
+  }
+  return {{"statistic", "oadev"}, {"confidence", c.curve.confidence_level}, {"points", points}};
+}
 
 /// SI unit (JSON, si_unit) and data-sheet unit (table, display_unit) of each term, per sensor.
 struct TermUnits {
@@ -102,6 +124,7 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
       j["ci_low"] = p.ci_low;
       j["ci_high"] = p.ci_high;
       j["leading_points"] = p.leading_points;
+      if (p.lowered_to_curve < 1) j["lowered_to_curve"] = p.lowered_to_curve;
     } else {
       j["upper_bound"] = p.upper_bound;
     }
@@ -122,12 +145,20 @@ nlohmann::json terms_json(const ChannelFit& fit) {
   return t;
 }
 
-/// The joint fit's warnings on a channel: the misfit and the short-log K or R.
+nlohmann::json contradictions_json(const ChannelFit& fit, Sensor sensor) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& c : fit.contradictions) out.push_back(describe(c, sensor));
+  return out;
+}
+
+/// The joint fit's warnings on a channel: the misfit, the short-log K or R, what the curve
+/// contradicts, and the read-outs standing in for it.
 std::vector<std::string> channel_warnings(const Channel& c) {
   std::vector<std::string> out;
   if (!c.fit.joint) return out;
   for (const std::string& w : {misfit_warning(*c.fit.joint, c.name),
-                               short_log_warning(*c.fit.joint, c.name)}) {
+                               short_log_warning(*c.fit.joint, c.name),
+                               readings_warning(c.fit, c.name, c.sensor)}) {
     if (!w.empty()) out.push_back(w);
   }
   return out;
@@ -138,7 +169,8 @@ std::vector<std::string> channel_warnings(const Channel& c) {
 /// is above it (rate_above_log_note, convert.hpp); left out when unknown.
 std::string render_json(const std::string& input, std::optional<double> log_rate_hz,
                         const std::vector<Channel>& channels,
-                        const std::vector<TriadSummary>& triads, double ci) {
+                        const std::vector<TriadSummary>& triads, const FitOptions& options) {
+  const double ci = options.confidence_level;
   nlohmann::json doc;
   doc["tool"] = "sigmatau";
   doc["version"] = SIGMATAU_VERSION;
@@ -147,7 +179,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
   doc["confidence"] = ci;
   doc["channels"] = nlohmann::json::array();
   for (const auto& c : channels) {
-    const ChannelFit& primary = c.fit.joint ? *c.fit.joint : *c.fit.slopes;
+    const ChannelFit& primary = c.fit.reported();
     nlohmann::json j;
     j["name"] = c.name;
     j["quantity"] = c.sensor == Sensor::gyro ? "angular_rate" : "specific_force";
@@ -156,7 +188,23 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     j["method"] = std::string(to_string(primary.method));
     j["points"] = primary.points;
     j["warnings"] = channel_warnings(c);
-    if (c.fit.joint) {
+    j["contradictions"] = contradictions_json(primary, c.sensor);
+    j["curve"] = curve_with_model_json(c, options);
+    if (c.fit.readings) {
+      // The curve's read-outs are reported; the joint fit they stand in for is kept beside them.
+      j["reported_from"] = "curve_readings";
+      j["readings_reason"] = c.fit.readings_reason;
+      const ChannelFit& joint = *c.fit.joint;
+      j["joint"] = {{"model_terms", terms_json(joint)},
+                    {"parameters", parameters_json(joint, c.sensor)},
+                    {"method", "joint"},
+                    {"chi_squared", joint.chi_squared},
+                    {"bic", joint.bic},
+                    {"dof", joint.dof},
+                    {"p_value", joint.p_value},
+                    {"misfit_tau_s", joint.misfit_tau_s},
+                    {"contradictions", contradictions_json(joint, c.sensor)}};
+    } else if (c.fit.joint) {
       j["chi_squared"] = primary.chi_squared;
       j["bic"] = primary.bic;
       j["dof"] = primary.dof;
@@ -232,6 +280,7 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     }
     out << "\n";
   }
+  for (const auto& c : fit.contradictions) out << "   contradicted by the curve: " << describe(c, sensor) << "\n";
   if (fit.method == FitMethod::joint) {
     std::snprintf(line, sizeof line, "   goodness of fit: chi-squared %.4g for %d degrees of freedom, p = %.2g%s\n",
                   fit.chi_squared, fit.dof, fit.p_value,
@@ -249,6 +298,12 @@ std::string render_table(const std::string& input, const std::vector<Channel>& c
   for (const auto& c : channels) {
     if (c.fit.joint) table_for(out, c.name, c.sensor, *c.fit.joint, ci);
     if (c.fit.slopes) table_for(out, c.name, c.sensor, *c.fit.slopes, ci);
+    if (c.fit.readings) {
+      out << "\n# " << c.name << ": the joint fit is " << c.fit.readings_reason
+          << "; reported instead: the curve's own read-outs (IEEE 952: B from the minimum, N "
+             "from the -1/2 line; a line that crosses the curve lowered to touch it)";
+      table_for(out, c.name, c.sensor, *c.fit.readings, ci);
+    }
   }
   for (const auto& t : triads) {
     out << "\n# " << to_string(t.sensor) << " triad (";
@@ -416,6 +471,8 @@ void run_fit(const FitArguments& args) {
       Channel c;
       c.name = saved.channel;
       c.sensor = sensor_of(saved.channel, saved.sensor);
+      c.curve = saved.curve;
+      c.source = saved.source;
       try {
         c.fit = fit_noise(saved.curve, saved.source, options);
       } catch (const Error& e) {
@@ -449,6 +506,8 @@ void run_fit(const FitArguments& args) {
       // A deviation and its interval scale with the unit; the noise identification and the EDF
       // do not depend on it.
       if (unit.result_to_si != 1.0) scale_curve(log.curves[i], unit.result_to_si);
+      c.curve = log.curves[i];
+      c.source = log.source;
       try {
         c.fit = fit_noise(log.curves[i], log.source, options);
       } catch (const Error& e) {
@@ -467,7 +526,7 @@ void run_fit(const FitArguments& args) {
   for (const auto& c : channels) {
     names.push_back(c.name);
     sensors.push_back(c.sensor);
-    fits.push_back(c.fit.joint ? &*c.fit.joint : &*c.fit.slopes);
+    fits.push_back(&c.fit.reported());
   }
   const auto triads = summarise_triads(names, sensors, fits);
   for (const auto& c : channels) {
@@ -475,7 +534,7 @@ void run_fit(const FitArguments& args) {
     for (const std::string& w : channel_warnings(c)) std::cerr << "sigmatau: warning: " << w << "\n";
   }
   const std::string text = args.format == "json"
-                               ? render_json(args.log.input, log_rate_hz, channels, triads, args.ci)
+                               ? render_json(args.log.input, log_rate_hz, channels, triads, options)
                                : render_table(args.log.input, channels, triads, args.ci);
   if (args.output.empty()) {
     std::cout << text;

@@ -249,6 +249,28 @@ TEST_CASE("the header names the fit method whose terms are used") {
   }
 }
 
+TEST_CASE("channels whose curve read-outs stand in for the joint fit are named in every file") {
+  // fit / analyze write "reported_from": "curve_readings" where the joint fit is rejected or
+  // contradicted by its curve (fit.hpp, NoiseFit::readings): those channels' terms are read
+  // from the curve, which the files say, and not as a "slopes fit" nor as a rejected fit.
+  json doc = gyro_fit();
+  for (auto& c : doc["channels"]) {
+    c["method"] = "slopes";
+    c["reported_from"] = "curve_readings";
+    c["readings_reason"] = "rejected (p = 0) and contradicted by the curve";
+    c.erase("p_value");
+  }
+  const FitForFilter fit = read_fit_for_filter(doc.dump(), "f");
+  CHECK(fit.warnings.empty());
+  REQUIRE(fit.notes.size() == 1);
+  CHECK(has(fit.notes.front(), "terms of gx (joint fit rejected (p = 0) and contradicted by the "
+                               "curve), gy (joint fit"));
+  CHECK(has(fit.notes.front(), "read from the ADEV curve itself (IEEE 952: bias stability from "
+                               "the curve's minimum"));
+  const std::string kalibr = export_filter_config(convert_fit(fit, at(100), "f"), ExportFormat::kalibr);
+  CHECK(has(kalibr, "# note: terms of gx"));
+}
+
 TEST_CASE("a filter rate above the log's rate says the white level is extrapolated") {
   CHECK(rate_above_log_note(200, 100) ==
         "the filter rate 200 Hz is above the log's sample rate 100 Hz: the white-noise level was "

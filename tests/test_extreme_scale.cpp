@@ -195,6 +195,43 @@ TEST_CASE("the noise fit of extreme samples gives the unit-scale model with its 
   }
 }
 
+TEST_CASE("curve read-outs standing in for a rejected fit scale with extreme samples too") {
+  // White noise plus a sinusoid of 4x its standard deviation, period 2000 samples: the bump no
+  // term describes gets the joint fit rejected or contradicted, so NoiseFit::readings stand in.
+  std::vector<double> y = test::white(40000, 0.0, 1.0, 19);
+  for (std::size_t i = 0; i < y.size(); ++i)
+    y[i] += 4.0 * std::sin(2.0 * 3.141592653589793 * static_cast<double>(i) / 2000.0);
+  const CurveSource source{0.01, 40001, 0};
+  FitOptions options;
+  const auto fit = [&](double scale) {
+    const PhaseSeries series = PhaseSeries::from_rate(times(y, scale), 0.01);
+    return fit_noise(compute_allan_curve(series, Statistic::oadev, octave(), 0.683), source,
+                     options);
+  };
+  const NoiseFit unit = fit(1.0);
+  REQUIRE(unit.readings.has_value());
+  for (const double scale : {1e-200, 1e300}) {
+    CAPTURE(scale);
+    const NoiseFit scaled = fit(scale);
+    REQUIRE(scaled.readings.has_value());
+    CHECK(scaled.readings_reason == unit.readings_reason);
+    REQUIRE(scaled.readings->parameters.size() == unit.readings->parameters.size());
+    for (std::size_t k = 0; k < unit.readings->parameters.size(); ++k) {
+      const ParameterEstimate& p = unit.readings->parameters[k];
+      const ParameterEstimate& q = scaled.readings->parameters[k];
+      if (p.in_model) SIGMATAU_CHECK_REL(q.value / scale, p.value, kRtol);
+    }
+    REQUIRE(scaled.joint.has_value());
+    REQUIRE(scaled.joint->contradictions.size() == unit.joint->contradictions.size());
+    for (std::size_t k = 0; k < unit.joint->contradictions.size(); ++k) {
+      SIGMATAU_CHECK_REL(scaled.joint->contradictions[k].reported / scale,
+                         unit.joint->contradictions[k].reported, kRtol);
+      SIGMATAU_CHECK_REL(scaled.joint->contradictions[k].curve / scale,
+                         unit.joint->contradictions[k].curve, kRtol);
+    }
+  }
+}
+
 TEST_CASE("a deviation beyond the largest double is an Error naming the statistic and tau") {
   // Phase points of 1e300 s one nanosecond apart: OADEV of order 1e309, not a double. The
   // message said "deviation must be finite and >= 0, got inf".

@@ -82,6 +82,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
       entry["ci_low"] = p.ci_low;
       entry["ci_high"] = p.ci_high;
       if (std::isfinite(p.edf)) entry["edf"] = p.edf;
+      if (p.lowered_to_curve < 1) entry["lowered_to_curve"] = p.lowered_to_curve;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
     } else {
@@ -128,6 +129,12 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"readouts", readouts}};
 }
 
+json contradictions_json(const ChannelFit& fit, Sensor sensor) {
+  json out = json::array();
+  for (const auto& c : fit.contradictions) out.push_back(describe(c, sensor));
+  return out;
+}
+
 /// Data-sheet noise densities are quoted to about 10 %: a smaller gap between the fit's N and
 /// the PSD's changes no decision, however narrow the intervals of a long log make it.
 constexpr double kWhiteNoiseGap = 1.1;
@@ -135,7 +142,7 @@ constexpr double kWhiteNoiseGap = 1.1;
 /// A note when the fit's N and the PSD's noise density (add_psd) differ by more than their
 /// intervals allow and by more than kWhiteNoiseGap; "" otherwise or without a PSD.
 std::string white_noise_gap(const std::string& name, Sensor sensor, const ParameterEstimate& n,
-                            const json& channel, double confidence) {
+                            bool from_curve_readings, const json& channel, double confidence) {
   if (!n.in_model || !channel.contains("psd")) return "";
   const json& nd = channel["psd"]["noise_density"];
   const double psd = nd.value("value", 0.0), low = nd.value("ci_low", 0.0), high = nd.value("ci_high", 0.0);
@@ -147,17 +154,19 @@ std::string white_noise_gap(const std::string& name, Sensor sensor, const Parame
   const auto band = nd.value("band_hz", json::array({0.0, 0.0}));
   char text[900];
   std::snprintf(text, sizeof text,
-                "%s: the white noise of the fit, N = %.4g %s [%.4g, %.4g], and the PSD's noise "
+                "%s: the white noise %s, N = %.4g %s [%.4g, %.4g], and the PSD's noise "
                 "density over %.3g-%.3g Hz, %.4g %s [%.4g, %.4g], differ %.2fx, more than their "
                 "%.1f %% intervals allow: the spectrum is not white across the band (%s; see the "
-                "PSD plot). The filter files and the data-sheet verdicts use the fit's N, the level "
+                "PSD plot). The filter files and the data-sheet verdicts use %s, the level "
                 "the Allan curve (and a filter at this rate) sees over all frequencies; the PSD's "
                 "value is what a data sheet means by noise density in a flat band",
-                name.c_str(), n.value * f, unit.c_str(), n.ci_low * f, n.ci_high * f,
+                name.c_str(), from_curve_readings ? "read from the curve's -1/2 line" : "of the fit",
+                n.value * f, unit.c_str(), n.ci_low * f, n.ci_high * f,
                 band[0].get<double>(), band[1].get<double>(), psd * f, unit.c_str(), low * f,
                 high * f, ratio, 100 * confidence,
                 ratio > 1 ? "power outside the flat band, e.g. a resonance, adds to the short taus"
-                          : "the spectrum falls toward Nyquist, e.g. the sensor filters its output");
+                          : "the spectrum falls toward Nyquist, e.g. the sensor filters its output",
+                from_curve_readings ? "this read-out" : "the fit's N");
   return text;
 }
 
@@ -318,16 +327,44 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
     try {
       const NoiseFit fit = fit_noise(curves[c].front(), source, fit_options);
       const ChannelFit& joint = *fit.joint;
+      // What sheets and filters take: the joint fit, or the curve's read-outs standing in for a
+      // joint fit that is rejected or contradicts the curve (consistency guards, fit.hpp).
+      const ChannelFit& reported = fit.reported();
+      const bool readings = fit.readings.has_value();
+      const Sensor sensor = channel.role->sensor;
       if (const std::string w = misfit_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       if (const std::string w = short_log_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
+      if (const std::string w = readings_warning(fit, channel.name, sensor); !w.empty()) warnings.push_back(w);
       if (c < results["channels"].size()) {
-        const std::string w = white_noise_gap(channel.name, channel.role->sensor, joint.parameter(NoiseTerm::white),
-                                              results["channels"][c], options.confidence);
+        const std::string w = white_noise_gap(channel.name, sensor, reported.parameter(NoiseTerm::white),
+                                              readings, results["channels"][c], options.confidence);
         if (!w.empty()) warnings.push_back(w);
       }
       const auto& points = curves[c].front().points;
-      fits.push_back(fit_json(channel.name, channel.role->sensor, joint, points.front().value.tau_s,
-                              points.back().value.tau_s));
+      json entry = fit_json(channel.name, sensor, reported, points.front().value.tau_s,
+                            points.back().value.tau_s);
+      entry["contradictions"] = contradictions_json(reported, sensor);
+      if (readings) {
+        entry["reported_from"] = "curve_readings";
+        entry["readings_reason"] = fit.readings_reason;
+        json rejected = fit_json(channel.name, sensor, joint, points.front().value.tau_s,
+                                 points.back().value.tau_s);
+        rejected["contradictions"] = contradictions_json(joint, sensor);
+        entry["joint"] = rejected;
+      }
+      fits.push_back(entry);
+      // The reported model beside every fitted point of the curve (and the joint fit's, when
+      // the read-outs stand in for it), so the reader sees where the model departs.
+      if (c < results["channels"].size() && !results["channels"][c]["allan"].empty()) {
+        json& curve_points = results["channels"][c]["allan"][0]["points"];
+        const auto model = model_deviation(reported, curves[c].front(), source, fit_options);
+        const auto joint_model = model_deviation(joint, curves[c].front(), source, fit_options);
+        for (std::size_t j = 0; j < model.size() && j < curve_points.size(); ++j) {
+          if (!std::isfinite(model[j])) continue;
+          curve_points[j]["model_dev"] = model[j];
+          if (readings) curve_points[j]["joint_model_dev"] = joint_model[j];
+        }
+      }
       const std::string axis(1, static_cast<char>('x' + channel.role->axis));
       const std::pair<NoiseTerm, MeasuredQuantity> kMeasured[] = {
           {NoiseTerm::white, MeasuredQuantity::white_noise},
@@ -335,20 +372,27 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
           {NoiseTerm::rate_random_walk, MeasuredQuantity::rate_random_walk}};
       const std::size_t first_measured = measured.size();
       for (const auto& [term, quantity] : kMeasured) {
-        const auto& p = joint.parameter(term);
+        const auto& p = reported.parameter(term);
         if (p.in_model) {
-          measured.push_back({channel.role->sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
+          measured.push_back({sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
         } else {
           // Left out by the fit: still checked against the sheet, by its upper bound.
-          measured.push_back({.sensor = channel.role->sensor,
+          measured.push_back({.sensor = sensor,
                               .quantity = quantity,
                               .axis = axis,
                               .detected = false,
                               .upper_bound = p.upper_bound});
         }
       }
-      // A rejected fit (p below kMisfitPValue) marks the verdicts built on it.
-      for (std::size_t i = first_measured; i < measured.size(); ++i) measured[i].fit_p_value = joint.p_value;
+      // A rejected fit (p below kMisfitPValue) marks the verdicts built on it; the read-outs
+      // that stand in for one say so instead.
+      for (std::size_t i = first_measured; i < measured.size(); ++i) {
+        if (readings) {
+          measured[i].from_curve_readings = true;
+        } else {
+          measured[i].fit_p_value = joint.p_value;
+        }
+      }
     } catch (const Error& e) {
       warnings.push_back(channel.name + ": no noise-term fit (" + e.what() + ")");
     }

@@ -285,6 +285,7 @@ std::string compliance_json(const std::vector<ComplianceItem>& items, const Data
       j["upper_bound"] = item.measured.upper_bound;
     }
     j["verdict"] = std::string(to_string(item.verdict));
+    if (item.measured.from_curve_readings) j["from_curve_readings"] = true;
     if (std::isfinite(item.measured.fit_p_value)) {
       j["fit_p_value"] = item.measured.fit_p_value;
       j["fit_rejected"] = fit_rejected(item.measured);

@@ -102,6 +102,9 @@ void read_fit(const json& doc, const JsonField& at, std::vector<MeasuredParamete
         detail::optional_number(channel, "p_value", named, NumberRule::probability, true);
     const std::string method = detail::optional_text(channel, "method", named).value_or("joint");
     const double p_value = p && method == "joint" ? *p : std::numeric_limits<double>::quiet_NaN();
+    // The curve's read-outs standing in for a rejected or contradicted joint fit (fit JSON
+    // "reported_from": "curve_readings").
+    const bool readings = detail::optional_text(channel, "reported_from", named).value_or("") == "curve_readings";
     for (const auto& [key, quantity] : kTerms) {
       const std::optional<detail::FitTermFields> term =
           detail::fit_term_fields(channel["parameters"], key, named.at("parameters"));
@@ -117,7 +120,8 @@ void read_fit(const json& doc, const JsonField& at, std::vector<MeasuredParamete
              .axis = axis,
              .detected = false,
              .upper_bound = term->upper_bound.value_or(std::numeric_limits<double>::quiet_NaN()),
-             .fit_p_value = p_value});
+             .fit_p_value = p_value,
+             .from_curve_readings = readings});
         continue;
       }
       for (const auto& [bound, name_of_bound] :
@@ -130,7 +134,8 @@ void read_fit(const json& doc, const JsonField& at, std::vector<MeasuredParamete
                      .value = *term->value,
                      .ci_low = *term->ci_low,
                      .ci_high = *term->ci_high,
-                     .fit_p_value = p_value});
+                     .fit_p_value = p_value,
+                     .from_curve_readings = readings});
     }
   }
 }

@@ -29,8 +29,10 @@ std::string format_ratio(double ratio) {
   return out;
 }
 
-std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value) {
+std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value,
+                               bool from_curve_readings) {
   std::string text = within_uncertainty ? "within uncertainty" : "";
+  if (from_curve_readings) text += std::string(text.empty() ? "" : "; ") + "curve read-out";
   if (fit_p_value < kMisfitPValue) {
     char p[32];
     std::snprintf(p, sizeof p, "%.2g", fit_p_value);
@@ -39,8 +41,9 @@ std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value) {
   return text;
 }
 
-std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value) {
-  const std::string qualifiers = verdict_qualifiers(within_uncertainty, fit_p_value);
+std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value,
+                         bool from_curve_readings) {
+  const std::string qualifiers = verdict_qualifiers(within_uncertainty, fit_p_value, from_curve_readings);
   return std::string(verdict) + (qualifiers.empty() ? "" : " (" + qualifiers + ")");
 }
 

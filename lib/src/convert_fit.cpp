@@ -125,7 +125,7 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
   std::map<std::string, std::string> rejected;  // advice -> "gyro_x (p = 0, ...), ..."
   std::set<std::string> methods;
   bool slopes_also = false;
-  std::vector<std::string> ramps, quantizations;
+  std::vector<std::string> ramps, quantizations, readings;
   for (std::size_t index = 0; index < channels->size(); ++index) {
     const json& channel = (*channels)[index];
     const detail::JsonField here = channels_field.at(index);
@@ -163,7 +163,12 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
     fit.adev_minimum_tau_s = b.tau_min_s;
     axes[role->sensor == Sensor::gyro ? 0 : 1][static_cast<std::size_t>(role->axis)] = fit;
 
-    if (const std::string method = text_of(channel, "method"); !method.empty()) {
+    if (text_of(channel, "reported_from") == "curve_readings") {
+      // The curve's read-outs standing in for a joint fit that was rejected or contradicted
+      // the curve (fit.hpp, NoiseFit::readings): said on their own, not as a slopes fit.
+      const std::string reason = text_of(channel, "readings_reason");
+      readings.push_back(name + (reason.empty() ? "" : " (joint fit " + reason + ")"));
+    } else if (const std::string method = text_of(channel, "method"); !method.empty()) {
       methods.insert(method);
     }
     slopes_also = slopes_also || channel.contains("slopes");
@@ -292,6 +297,14 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
     std::string list;
     for (const auto& m : methods) list += (list.empty() ? "" : " / ") + m;
     out.notes.push_back("terms from the " + list + " noise-term fits (per channel)" + level);
+  }
+  if (!readings.empty()) {
+    std::string list;
+    for (const auto& r : readings) list += (list.empty() ? "" : ", ") + r;
+    out.notes.push_back("terms of " + list +
+                        " read from the ADEV curve itself (IEEE 952: bias stability from the "
+                        "curve's minimum, N from the -1/2 line at 1 s, K from the +1/2 line at 3 "
+                        "s): the joint fit there describes no curve or contradicts its own");
   }
   add_left_out_note(out.notes,
                     "rate ramp R kept by the fit, left out of this file (a filter has no ramp term)",

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "fit_internal.hpp"
@@ -123,6 +124,11 @@ void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
     p.upper_bound *= unit;
     p.adev_min *= unit;
   }
+  for (Contradiction& c : fit->contradictions) {  // deviations, as the terms
+    c.reported *= unit;
+    c.curve *= unit;
+    c.curve_limit *= unit;
+  }
 }
 
 }  // namespace
@@ -138,6 +144,7 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     NoiseFit fit = fit_noise(divided, source, options);
     multiply_terms(fit.joint, unit);
     multiply_terms(fit.slopes, unit);
+    multiply_terms(fit.readings, unit);
     return fit;
   }
   if (curve.statistic != Statistic::oadev) {
@@ -203,7 +210,23 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
   if (options.method != FitMethod::joint) {
     fit.slopes = detail::fit_slopes(points, source, options, j_min);
   }
-  for (auto* method : {&fit.joint, &fit.slopes}) {
+  // A joint fit that is rejected or contradicts its curve is kept, but the curve's own
+  // read-outs stand in for it in what is reported (NoiseFit::reported).
+  if (fit.joint) {
+    fit.joint->contradictions = detail::check_against_curve(*fit.joint, points, j_min, source);
+    const bool rejected = fit.joint->p_value < kMisfitPValue;
+    if (rejected || !fit.joint->contradictions.empty()) {
+      fit.readings = detail::fit_slopes(points, source, options, j_min);
+      detail::lower_to_curve(*fit.readings, points, source);
+      char p_text[64];
+      std::snprintf(p_text, sizeof p_text, "rejected (p = %.2g)", fit.joint->p_value);
+      if (rejected) fit.readings_reason = p_text;
+      if (!fit.joint->contradictions.empty()) {
+        fit.readings_reason += std::string(rejected ? " and " : "") + "contradicted by the curve";
+      }
+    }
+  }
+  for (auto* method : {&fit.joint, &fit.slopes, &fit.readings}) {
     if (!*method) continue;
     for (auto& p : (*method)->parameters) {
       if (p.term != NoiseTerm::bias_instability) continue;
@@ -211,7 +234,35 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
       p.adev_min = points[j_min].dev;
     }
   }
+  for (auto* method : {&fit.slopes, &fit.readings}) {
+    if (*method) (*method)->contradictions = detail::check_against_curve(**method, points, j_min, source);
+  }
   return fit;
+}
+
+const ChannelFit& NoiseFit::reported() const {
+  if (readings) return *readings;
+  if (joint) return *joint;
+  if (slopes) return *slopes;
+  throw Error("noise fit holds no result");
+}
+
+std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& curve,
+                                    const CurveSource& source, const FitOptions& options) {
+  const Sampling sampling{source.tau0_s, source.flicker_taps, false};
+  const NoiseTerms model = fit.noise_terms();
+  std::vector<double> out;
+  out.reserve(curve.points.size());
+  for (const auto& p : curve.points) {
+    // The same selection as fit_noise's.
+    const double tau = static_cast<double>(p.value.m) * source.tau0_s;
+    const bool used = p.value.dev > 0 && std::isfinite(p.value.dev) && p.value.m >= 1 &&
+                      source.n_phase_points - 2 * p.value.m >= 1 &&
+                      tau >= options.tau_min_s * (1 - 1e-9) && tau <= options.tau_max_s * (1 + 1e-9);
+    out.push_back(used ? std::sqrt(sampled_avar(model, p.value.m, sampling))
+                       : std::numeric_limits<double>::quiet_NaN());
+  }
+  return out;
 }
 
 void check_tau_range(double tau_min_s, double tau_max_s) {
@@ -234,6 +285,28 @@ std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {
                     : "Something outside Q, N, B, K, R (a Gauss-Markov bump, a sinusoid, "
                       "outliers, a temperature drift) shapes the curve there: look at the plot, "
                       "and fit a tau range without it (--tau-min / --tau-max)");
+  return text;
+}
+
+std::string readings_warning(const NoiseFit& fit, const std::string& channel, Sensor sensor) {
+  if (!fit.readings || !fit.joint) return "";
+  std::string text = channel + ": the joint fit is " + fit.readings_reason;
+  for (std::size_t i = 0; i < fit.joint->contradictions.size(); ++i) {
+    text += (i == 0 ? ": " : "; ") + describe(fit.joint->contradictions[i], sensor);
+  }
+  text += ". Reported instead (values, verdicts, filter files): the curve's own read-outs, IEEE 952: "
+          "bias stability from the curve's minimum, N from the -1/2 line at 1 s, K from the +1/2 "
+          "line at 3 s";
+  for (const auto& p : fit.readings->parameters) {
+    if (!p.in_model || !(p.lowered_to_curve < 1)) continue;
+    char lowered[200];
+    std::snprintf(lowered, sizeof lowered,
+                  "; %s lowered to %.3g times its fitted line, to the line that touches the curve "
+                  "(the fitted line crossed it)",
+                  std::string(term_symbol(p.term)).c_str(), p.lowered_to_curve);
+    text += lowered;
+  }
+  for (const auto& c : fit.readings->contradictions) text += "; the read-outs too: " + describe(c, sensor);
   return text;
 }
 

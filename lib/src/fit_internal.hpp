@@ -61,6 +61,18 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
 ChannelFit fit_slopes(const std::vector<AvarPoint>& points, const CurveSource& source,
                       const FitOptions& options, std::size_t j_min);
 
+/// The consistency guards (fit_guards.cpp) of `fit` on its fitted `points`, whose smallest
+/// dev is at `j_min`: empty when the curve contradicts nothing the fit reports.
+std::vector<Contradiction> check_against_curve(const ChannelFit& fit,
+                                               const std::vector<AvarPoint>& points,
+                                               std::size_t j_min, const CurveSource& source);
+
+/// Lowers each kept term of the read-outs `fit` but B (whose read-out is the minimum itself) to
+/// the largest value whose own ADEV stays within every fitted point's kGuardLevel interval
+/// (ParameterEstimate::lowered_to_curve): the tangent read-out where the fitted line crosses
+/// the curve.
+void lower_to_curve(ChannelFit& fit, const std::vector<AvarPoint>& points, const CurveSource& source);
+
 /// Non-negative least squares min ||A x - b||, x >= 0 (Lawson-Hanson active set).
 Eigen::VectorXd nnls(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);
 

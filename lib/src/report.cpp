@@ -51,10 +51,18 @@ bool any_fit_rejected(const json& compliance) {
   return false;
 }
 
+/// True when some compliance row is a curve read-out (compliance.hpp, from_curve_readings).
+bool any_curve_reading(const json& compliance) {
+  for (const auto& item : compliance["items"]) {
+    if (item.value("from_curve_readings", false)) return true;
+  }
+  return false;
+}
+
 /// The verdict cell: "fail", "fail (within uncertainty)", "pass (fit rejected, p = 0)".
 std::string verdict_cell(const json& item) {
   return verdict_text(item.value("verdict", ""), item.value("within_uncertainty", false),
-                      item_number(item, "fit_p_value"));
+                      item_number(item, "fit_p_value"), item.value("from_curve_readings", false));
 }
 
 /// Channels whose joint fit was rejected (p below kMisfitPValue), in results.json's order.
@@ -357,6 +365,7 @@ std::string summary_markdown(const json& results, const std::map<std::string, st
     }
     md << "\n" << verdict_rule(results) << "\n";
     if (any_fit_rejected(results["compliance"])) md << "\n" << kFitRejectedNote << ".\n";
+    if (any_curve_reading(results["compliance"])) md << "\n" << kCurveReadingNote << ".\n";
     if (any_inconclusive(results["compliance"])) md << "\n" << kInconclusiveNote << "\n";
   }
   md << filter_section_markdown(results, filter_files);
@@ -443,6 +452,9 @@ std::string report_html(const json& results, const PlotSet& plots,
     h << "</table>\n<p class=\"muted\">" << html_escape(verdict_rule(results)) << "</p>\n";
     if (any_fit_rejected(results["compliance"])) {
       h << "<p class=\"muted\">" << html_escape(kFitRejectedNote) << ".</p>\n";
+    }
+    if (any_curve_reading(results["compliance"])) {
+      h << "<p class=\"muted\">" << html_escape(kCurveReadingNote) << ".</p>\n";
     }
     if (any_inconclusive(results["compliance"])) {
       h << "<p class=\"muted\">" << html_escape(kInconclusiveNote) << "</p>\n";

@@ -222,6 +222,7 @@ CompliancePlot compliance_plot(const json& results) {
     // The label says which limit it is (typ or max) and what the verdict rests on.
     row.label = item_label(item) + (item.value("limit_is_typical", false) ? " (typ)" : " (max)");
     if (item.value("fit_rejected", false)) row.label += ", fit rejected";
+    if (item.value("from_curve_readings", false)) row.label += ", read-out";
     row.verdict = verdict;
     if (undetected(item)) {
       // Only a bound: an arrow pointing left from bound / limit.

@@ -5,7 +5,8 @@
 set(chart_check ${CMAKE_CURRENT_SOURCE_DIR}/support/check_compliance_chart.cmake)
 set(chart_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_compliance_chart)
 
-# That log (../shared/data, skipped when absent): 9 rows, all but one "fit rejected".
+# That log (../shared/data, skipped when absent): 9 rows, every one a "read-out" (the joint fits
+# are rejected or contradict their curves: tests/cli/fit_guards.cmake).
 set(adis16405 ${SIGMATAU_DATA_DIR}/imu/adis16405_imudata/adis16405_imu1_100Hz.csv.gz)
 if(EXISTS ${adis16405})
   sigmatau_cli_test(NAME cli_compliance_chart_adis16405 EXIT 0

@@ -84,6 +84,10 @@ struct MeasuredParameter {
   /// known (a calibration, a slopes fit, an older file). Below kMisfitPValue the fit is
   /// rejected (no model describes the curve) and a verdict from it is marked so.
   double fit_p_value = std::numeric_limits<double>::quiet_NaN();
+  /// true: the value is the curve's own read-out (IEEE 952: the minimum for B, the -1/2 line
+  /// for N), standing in for a joint fit that was rejected or contradicted the curve
+  /// (fit.hpp, NoiseFit::readings); fit_p_value is then NaN.
+  bool from_curve_readings = false;
 };
 
 /// True when the term's fit was rejected: fit_p_value below fit.hpp's kMisfitPValue (1e-3), the
@@ -138,12 +142,21 @@ std::vector<ComplianceItem> check_compliance(const std::vector<MeasuredParameter
 bool fail_within_uncertainty(const ComplianceItem& item);
 
 /// What qualifies a verdict, "" when nothing: "within uncertainty" (a fail whose lower bound is
-/// within the limit) and "fit rejected, p = 3e-07" (the fit behind it describes no curve), joined
-/// by "; ". `fit_p_value` NaN or at/above kMisfitPValue adds nothing.
-std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value);
+/// within the limit), "fit rejected, p = 3e-07" (the fit behind it describes no curve) and
+/// "curve read-out" (the value is the curve's own read-out, MeasuredParameter::
+/// from_curve_readings), joined by "; ". `fit_p_value` NaN or at/above kMisfitPValue adds nothing.
+std::string verdict_qualifiers(bool within_uncertainty, double fit_p_value,
+                               bool from_curve_readings = false);
 
 /// The verdict as tables show it: "fail", or "fail (within uncertainty; fit rejected, p = 0)".
-std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value);
+std::string verdict_text(std::string_view verdict, bool within_uncertainty, double fit_p_value,
+                         bool from_curve_readings = false);
+
+/// Said where the verdicts are explained when a row is a curve read-out.
+inline constexpr const char* kCurveReadingNote =
+    "curve read-out: the joint fit of that channel was rejected or contradicted its own curve, "
+    "so the value is read from the curve as IEEE 952 does (bias stability: the curve's minimum; "
+    "N: the -1/2 line at 1 s; K: the +1/2 line at 3 s), and so are the filter files";
 
 /// Said where the verdicts are explained, with kFitRejectedNote when a row is marked.
 inline constexpr const char* kWithinUncertaintyNote =
@@ -189,7 +202,8 @@ std::string gate_confidence_note(double confidence);
 /// The verdicts as JSON text (SI): {"spec":{"name","part","manufacturer"},"density_convention",
 /// "verdict","failed","items":[{"sensor","quantity","axis","detected", then "value","ci_low",
 /// "ci_high" when detected or "upper_bound" when not (as in a fit result), "verdict",
-/// "fit_p_value" and "fit_rejected" when the fit's p value is known, and when
+/// "fit_p_value" and "fit_rejected" when the fit's p value is known, "from_curve_readings" when
+/// the value is a curve read-out, and when
 /// specified "spec_field","limit_text","limit_unit","limit_is_typical","limit_si",
 /// "compared_upper","margin_upper","limit_factor","rule", plus "compared","margin",
 /// "compared_low","margin_low","within_uncertainty" when detected and

@@ -86,6 +86,40 @@ struct FitOptions {
   double tau_max_s = std::numeric_limits<double>::infinity();
 };
 
+/// Family-wise two-sided level of the curve points' intervals the consistency guards use,
+/// whatever the level of the reported intervals (analyze reports at 68.3 %: a 1-sigma interval
+/// would call one point in three a contradiction on a fit that is right). Each of the K fitted
+/// points is taken at 1 - (1 - kGuardLevel) / K (Bonferroni; guard_point_level): the curve's
+/// minimum is the smallest of K scattered points, and at 95 % per point a right fit on a flat
+/// floor of a few points was called contradicted one time in eight.
+inline constexpr double kGuardLevel = 0.95;
+/// The per-point level of the guards on a curve of `points` fitted points.
+double guard_point_level(int points);
+
+/// A reported quantity that the measured curve contradicts (docs/fit.md, "Consistency guards").
+/// Terms add their Allan variances, so no term alone can lie above the curve, and a model can
+/// not stay below the curve's smallest point; "beyond the point's interval" is beyond its
+/// chi-squared interval (EDF of the curve point) at guard_point_level.
+struct Contradiction {
+  enum class Kind {
+    /// B in the model: its flicker floor 0.664 B lies above the curve's smallest ADEV.
+    floor_above_minimum,
+    /// A kept term's own ADEV (exact sampled form) lies above the curve at a fitted tau.
+    term_above_curve,
+    /// B left out: the model with B at its upper bound stays below the curve's smallest ADEV,
+    /// so the bound is below the floor the curve reaches.
+    bound_below_minimum,
+  };
+  Kind kind = Kind::term_above_curve;
+  NoiseTerm term = NoiseTerm::white;
+  double tau_s = 0;        ///< where (the curve's minimum for the B checks; the worst tau)
+  double reported = 0;     ///< the ADEV the fit puts there (0.664 B, the term's, the model's)
+  double curve = 0;        ///< the curve's ADEV there
+  double curve_limit = 0;  ///< the edge of its interval that is crossed (high, or low)
+};
+/// One sentence for people, values in the data-sheet unit of `sensor` (display_units.hpp).
+std::string describe(const Contradiction& c, Sensor sensor);
+
 /// One parameter of one channel, in SI (units: noise_model.hpp).
 struct ParameterEstimate {
   NoiseTerm term = NoiseTerm::white;
@@ -110,6 +144,10 @@ struct ParameterEstimate {
   /// Slopes: points on its slope line (B: 1, the minimum). 0 for a term not in the model
   /// (rise_without_floor reads B's).
   int leading_points = 0;
+  /// Curve read-outs only (NoiseFit::readings): the factor (<= 1) by which the read-out was
+  /// lowered so that the term alone stays within the curve at every fitted tau (the -1/2 line
+  /// fitted through a filtered or bending curve crosses it); 1 when it was not.
+  double lowered_to_curve = 1;
 };
 
 /// The result of one method on one channel.
@@ -133,6 +171,10 @@ struct ChannelFit {
   /// fit bends toward the filtered points, so the furthest is among them or just after them).
   bool misfit_at_shortest_taus = false;
 
+  /// What this fit reports that the measured curve contradicts (consistency guards, see
+  /// Contradiction); empty when nothing does.
+  std::vector<Contradiction> contradictions;
+
   /// The parameter of `term` (Error if absent from `parameters`).
   const ParameterEstimate& parameter(NoiseTerm term) const;
   /// The model as NoiseTerms (terms in the model only).
@@ -142,14 +184,34 @@ struct ChannelFit {
 struct NoiseFit {
   std::optional<ChannelFit> joint;
   std::optional<ChannelFit> slopes;
+  /// The direct curve readings (the IEEE read-outs, as the slopes method: B from the curve's
+  /// minimum, N from the -1/2 line at 1 s, ...) standing in for a joint fit that is rejected
+  /// (p below kMisfitPValue) or contradicts its curve; nullopt when the joint fit is reported.
+  std::optional<ChannelFit> readings;
+  /// Why the readings stand in ("" when they do not): "rejected (p = 2e-12)" and/or
+  /// "contradicted by the curve".
+  std::string readings_reason;
+
+  /// What a data sheet or a filter takes from this fit: the readings when they stand in, else
+  /// the joint fit, else the slopes fit.
+  const ChannelFit& reported() const;
 };
 
 /// Fits one channel's OADEV curve (statistic oadev; deviations in SI). Points with a
-/// non-finite or non-positive deviation are ignored.
+/// non-finite or non-positive deviation are ignored. Every fit is checked against the curve
+/// (ChannelFit::contradictions, on the fitted taus); a joint fit that is rejected or
+/// contradicted is kept but NoiseFit::readings stand in for it (reported()).
 /// Throws Error when the statistic is not oadev, fewer than kMinFitPoints usable points
 /// remain (or fewer than the forced model's terms + 1), the source is invalid (tau0 not > 0,
 /// N < 3), a point's m does not match its tau, or the confidence level is not in (0, 1).
 NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const FitOptions& options);
+
+/// The model's OADEV at each point of `curve` (same order): the exact sampled deviation
+/// (sampled_avar) of `fit`'s terms at the point's m, at the points the fit used (usable and
+/// inside options' tau range); NaN at the others. What `model_dev` beside `dev` in the fit and
+/// results JSON holds, so a reader sees where the model departs from the curve.
+std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& curve,
+                                    const CurveSource& source, const FitOptions& options);
 
 /// Throws Error unless 0 <= tau_min_s < tau_max_s (the --tau-min / --tau-max range of a fit).
 void check_tau_range(double tau_min_s, double tau_max_s);
@@ -158,6 +220,11 @@ void check_tau_range(double tau_min_s, double tau_max_s);
 inline constexpr double kMisfitPValue = 1e-3;
 /// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel);
+
+/// A warning naming `channel` when the curve's read-outs stand in for the joint fit
+/// (NoiseFit::readings): why, each contradiction (values in `sensor`'s data-sheet units), and
+/// what is reported instead; "" otherwise.
+std::string readings_warning(const NoiseFit& fit, const std::string& channel, Sensor sensor);
 
 /// A rise (K or R) read from this many fitted taus or fewer is a short log's: see
 /// rise_without_floor.
