@@ -285,7 +285,8 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
                                                 const std::vector<Statistic>& stats,
                                                 const TauSpec& taus, LoadedChannels& loaded,
                                                 std::size_t& samples, std::string& partial_error,
-                                                std::vector<std::string>& outliers) {
+                                                std::vector<std::string>& outliers,
+                                                std::vector<std::string>& left_out) {
   const LogOptions options = log_options_from(args.log);
   set_input_unit(args.log, loaded);
   LogReader reader(options);
@@ -340,6 +341,25 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   note_reading(args.log, options, loaded.log.timing);
   std::vector<std::vector<AllanCurve>> curves;
   for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
+  // Decade factors the log reaches but a bounded stream cannot hold (the same on every channel).
+  if (!streams.empty() && !streams.front().factors_left_out().empty()) {
+    std::string list;
+    for (const std::int64_t m : streams.front().factors_left_out()) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%s%g s (m = %lld)", list.empty() ? "" : ", ",
+                    static_cast<double>(m) / loaded.rate_hz, static_cast<long long>(m));
+      list += text;
+    }
+    // The left-out factors start at a power of ten (1, 2 and 4 x 10^k share the odd part 5^k).
+    const std::int64_t first = streams.front().factors_left_out().front();
+    char held[96];
+    std::snprintf(held, sizeof held, "m = %lld (%g s)", static_cast<long long>(first / 10 * 4),
+                  static_cast<double>(first / 10 * 4) / loaded.rate_hz);
+    left_out.push_back("stream mode holds decade taus in bounded memory only up to " +
+                       std::string(held) + ": beyond, a stride would need too long a lag; this "
+                       "log also reaches " + list + ", left out: --mode exact or --taus octave "
+                       "computes them");
+  }
   if (!partial_error.empty()) {
     bool any_point = false;
     for (const auto& per_statistic : curves) {
@@ -479,10 +499,12 @@ void run_adev(const AdevArguments& args) {
   std::vector<std::optional<double>> constant_value;
   // Outlier warnings (the check analyze runs), from the samples in memory or block by block.
   std::vector<std::string> outliers;
+  std::vector<std::string> stream_left_out;  // decade taus a bounded stream could not hold
   if (out_of_core) {
     curves = run_out_of_core(args, stats, taus, loaded, samples, outliers);
   } else if (stream) {
-    curves = run_stream(args, stats, taus, loaded, samples, partial_error, outliers);
+    curves = run_stream(args, stats, taus, loaded, samples, partial_error, outliers,
+                        stream_left_out);
     if (partial_error.empty()) note_stream_skipped(taus, stats, curves, loaded.rate_hz, args.log.input);
     if (loaded.log.timing.segment_starts.size() > 1) {
       throw Error("--gaps split needs --mode exact: stream mode cannot restart its sums at a gap "
@@ -516,6 +538,10 @@ void run_adev(const AdevArguments& args) {
   }
   for (const std::string& message : outliers) {
     warnings.push_back(message);  // analyze's text: it says what spikes do to the deviations
+    std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
+  }
+  for (const std::string& message : stream_left_out) {
+    warnings.push_back(message);
     std::cerr << "sigmatau: warning: " << args.log.input << ": " << warnings.back() << "\n";
   }
   // A noise type that jumps at one tau (a spectral line read as another type) sets that

@@ -2,6 +2,7 @@
 // stride is 1, exact strided terms otherwise (against an independent long-double reference),
 // independent of how the input is split, bounded memory, and EDFs that match the scatter of
 // simulated estimates.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -362,4 +363,33 @@ TEST_CASE("bad settings and samples are errors") {
   stream.add(y);
   y[123] = std::numeric_limits<double>::infinity();
   CHECK_THROWS_WITH_AS(stream.add(y), doctest::Contains("sample 70123 (0-based)"), Error);
+}
+
+TEST_CASE("decade taus stream to 4e6 samples and name the longer factors the log reaches") {
+  // 1, 2 and 4 x 10^k share the odd part 5^k, the shortest lag a power-of-two stride allows:
+  // 5^7 = 78125 is beyond the stream's bound, so 10^7 and longer are not held. Before, every
+  // decade run failed here ("tau of 10000000 samples has no power-of-two factor").
+  StreamSettings settings;
+  settings.statistics = {Statistic::oadev};
+  settings.taus.kind = TauSpec::Kind::decade;
+  AllanStream stream(DataKind::rate, 0.01, settings);
+  std::mt19937_64 random(29);
+  std::normal_distribution<double> normal;
+  std::vector<double> chunk(std::size_t{1} << 20);
+  for (double& v : chunk) v = normal(random);
+  // OADEV reaches m = M / 4 (Stable32's stop ratio): 10^7 from 4e7 samples on.
+  const std::int64_t before = 39'999'999;
+  std::int64_t added = 0;
+  while (added < before) {
+    const auto n = std::min<std::int64_t>(static_cast<std::int64_t>(chunk.size()), before - added);
+    stream.add(std::span<const double>(chunk.data(), static_cast<std::size_t>(n)));
+    added += n;
+  }
+  CHECK(stream.factors_left_out().empty());
+  stream.add(std::span<const double>(chunk.data(), 1));
+  CHECK(stream.factors_left_out() == std::vector<std::int64_t>{10'000'000});
+  const AllanCurve curve = stream.curves(0.683).front();
+  REQUIRE_FALSE(curve.points.empty());
+  CHECK(curve.points.back().value.m == 4'000'000);
+  CHECK(curve.points.size() == 7 * 3);  // 1, 2, 4 x 10^0 .. 10^6
 }

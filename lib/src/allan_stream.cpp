@@ -94,6 +94,9 @@ struct AllanStream::Impl {
   std::vector<double> pending;  // input not yet processed (less than kChunk samples)
   double value_scale = 0.0;     // the values are processed divided by it; 0 before the first chunk
   std::vector<double> scaled;   // a chunk divided by value_scale (value_scale != 1 only)
+  /// Decade factors not prepared, ascending (their lag would exceed the memory bound): the
+  /// odd part of 10^k is 5^k, so from 10^7 on (5^7 = 78125 > kMaxLag) on the default settings.
+  std::vector<std::int64_t> left_out;
 
   std::int64_t stride_for(Statistic s, std::int64_t m) const {
     const std::int64_t dividing = largest_power_of_two_dividing(m);
@@ -280,6 +283,15 @@ AllanStream::AllanStream(DataKind kind, double tau0_s, const StreamSettings& set
       tau.m = m;
       tau.stride = s.stride_for(statistic, m);
       tau.lag = m / tau.stride;
+      if (tau.lag > std::max<std::int64_t>(kMaxLag, settings.density) &&
+          settings.taus.kind == TauSpec::Kind::decade) {
+        // The decade grid runs to kMaxFactor whatever the log: its factors beyond the bound are
+        // left out here and named by factors_left_out() once the log is long enough for them.
+        if (std::find(s.left_out.begin(), s.left_out.end(), m) == s.left_out.end()) {
+          s.left_out.insert(std::upper_bound(s.left_out.begin(), s.left_out.end(), m), m);
+        }
+        continue;
+      }
       if (tau.lag > std::max<std::int64_t>(kMaxLag, settings.density)) {
         throw Error("tau of " + std::to_string(m) +
                     " samples has no power-of-two factor for a bounded stream stride; use "
@@ -387,6 +399,22 @@ std::size_t AllanStream::memory_bytes() const {
   for (const auto& noise : s.noise) bytes += noise.memory_bytes();
   bytes += s.pending.capacity() * sizeof(double);
   return bytes;
+}
+
+std::vector<std::int64_t> AllanStream::factors_left_out() const {
+  const Impl& s = *impl_;
+  const std::int64_t n = s.points + static_cast<std::int64_t>(s.pending.size());
+  std::vector<std::int64_t> out;
+  if (n < 3) return out;
+  for (const std::int64_t m : s.left_out) {
+    for (const Statistic statistic : s.settings.statistics) {
+      if (m <= max_averaging_factor(statistic, n, s.kind)) {
+        out.push_back(m);
+        break;
+      }
+    }
+  }
+  return out;
 }
 
 std::vector<AllanCurve> AllanStream::curves(double confidence_level) const {

@@ -122,3 +122,9 @@ sigmatau_cli_test(NAME cli_analyze_named_channels_note EXIT 0
   STDERR "mx not analysed \\(--gyro / --accel name the channels"
   ARGS analyze ${found_dir}/mag.csv --gyro gx,gy,gz --accel ax,ay,az --taus 0.01
        -o ${found_dir}/mag_report --force)
+# Decade taus in stream mode: every such run failed ("tau of 10000000 samples has no power-of-two
+# factor"); the grid is held to 4e6 samples and longer factors a log reaches are named
+# (test_allan_stream). On this 120000-sample log: 0.01 s to 200 s, no warning.
+sigmatau_cli_test(NAME cli_adev_stream_decade EXIT 0
+  STDOUT "\n +0\\.01 +1 .*\n +200 +20000 "
+  ARGS adev ${example} --time-column t --mode stream --taus decade)

@@ -71,6 +71,11 @@ class AllanStream {
   std::vector<AllanCurve> curves(double confidence_level) const;
   /// The stride s used at averaging factor m for `statistic` (1 <= s <= m, s divides m).
   std::int64_t stride(Statistic statistic, std::int64_t m) const;
+  /// Averaging factors of a decade run that the current length reaches (up to the stop ratio of
+  /// one of the statistics) but that the stream does not compute: their stride lag (the odd
+  /// part 5^k of 10^k) would need memory beyond its bound, from m = 10^7 on. Ascending; empty
+  /// for octave and explicit taus, and for logs too short to reach them.
+  std::vector<std::int64_t> factors_left_out() const;
   /// Bytes of state held (independent of the number of samples added).
   std::size_t memory_bytes() const;
 
