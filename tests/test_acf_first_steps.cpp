@@ -6,22 +6,19 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <random>
 #include <vector>
 
 #include "../lib/src/noise_identification.hpp"  // internal interface under test
 #include "sigmatau/phase_series.hpp"
+#include "test_support.hpp"
 
 using namespace sigmatau;
 
 namespace {
 
+/// Unit Gaussian noise (test_support.hpp's generator).
 std::vector<double> white(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<double> v(n);
-  for (double& x : v) x = normal(rng);
-  return v;
+  return test::white(n, 0.0, 1.0, seed);
 }
 
 std::vector<double> cumulative(const std::vector<double>& v) {
