@@ -224,44 +224,46 @@ TriadNoise triad_from_data_sheet(const DataSheet& sheet, Sensor sensor,
     }
     return text;
   };
+  const SpecValue* arw = section->find(SpecField::random_walk);
+  const SpecValue* nd = section->find(SpecField::noise_density);
+  const SpecValue* bi = section->find(SpecField::bias_instability);
+  const SpecValue* rrw = section->find(SpecField::rate_random_walk);
+  // The value a filter model takes for one axis (the axis's own where the sheet prints it
+  // apart), in SI; nullopt when the entry is absent or has none.
+  const auto on_axis = [](const SpecValue* v, std::string_view axis) -> std::optional<double> {
+    if (!v) return std::nullopt;
+    const SpecValue value = v->for_axis(axis);
+    if (!value.nominal()) return std::nullopt;
+    return value.nominal()->value_si;
+  };
   static constexpr std::array<std::string_view, 3> kAxes = {"x", "y", "z"};
   for (std::size_t i = 0; i < kAxes.size(); ++i) {
-    const bool first = i == 0;
-    const auto find = [&](SpecField field) -> std::optional<SpecValue> {
-      const SpecValue* v = section->find(field);
-      if (!v) return std::nullopt;
-      return v->for_axis(kAxes[i]);
-    };
-    NoiseTerms terms;
-    const auto arw = find(SpecField::random_walk);
-    const auto nd = find(SpecField::noise_density);
-    if (arw && arw->nominal()) {
-      terms.white = arw->nominal()->value_si;
-      if (first)
-        triad.white_origin = std::string(sensor == Sensor::gyro ? "angle" : "velocity") +
-                             " random walk " + describe_axes(*section->find(SpecField::random_walk)) +
-                             " is the Allan N itself (the density convention does not apply)";
-    } else if (nd && nd->nominal()) {
-      terms.white = white_from_noise_density(nd->nominal()->value_si, convention);
-      if (first)
-        triad.white_origin = "noise density " +
-                             describe_axes(*section->find(SpecField::noise_density)) + " " +
-                             std::string(noise_density_reading(convention));
+    NoiseTerms& terms = triad.axes[i];
+    if (const auto n = on_axis(arw, kAxes[i])) {
+      terms.white = *n;
+    } else if (const auto density = on_axis(nd, kAxes[i])) {
+      terms.white = white_from_noise_density(*density, convention);
     }
-    std::string bias;
-    if (const auto bi = find(SpecField::bias_instability); bi && bi->nominal()) {
-      terms.bias_instability = bi->nominal()->value_si / kFlickerFloorFactor;
-      bias = "in-run bias stability " + describe_axes(*section->find(SpecField::bias_instability)) +
-             " read as the ADEV floor 0.664 B";
-    }
-    if (const auto rrw = find(SpecField::rate_random_walk); rrw && rrw->nominal()) {
-      terms.rate_random_walk = rrw->nominal()->value_si;
-      bias += std::string(bias.empty() ? "" : "; ") + "rate random walk " +
-              describe_axes(*section->find(SpecField::rate_random_walk));
-    }
-    if (first) triad.bias_origin = bias;
-    triad.axes[i] = terms;
+    if (const auto b = on_axis(bi, kAxes[i])) terms.bias_instability = *b / kFlickerFloorFactor;
+    if (const auto k = on_axis(rrw, kAxes[i])) terms.rate_random_walk = *k;
   }
+  // Where the terms came from, as printed (every axis's value where they differ).
+  if (on_axis(arw, "x")) {
+    triad.white_origin = std::string(sensor == Sensor::gyro ? "angle" : "velocity") +
+                         " random walk " + describe_axes(*arw) +
+                         " is the Allan N itself (the density convention does not apply)";
+  } else if (on_axis(nd, "x")) {
+    triad.white_origin = "noise density " + describe_axes(*nd) + " " +
+                         std::string(noise_density_reading(convention));
+  }
+  std::string bias;
+  if (on_axis(bi, "x")) {
+    bias = "in-run bias stability " + describe_axes(*bi) + " read as the ADEV floor 0.664 B";
+  }
+  if (on_axis(rrw, "x")) {
+    bias += std::string(bias.empty() ? "" : "; ") + "rate random walk " + describe_axes(*rrw);
+  }
+  triad.bias_origin = bias;
   return triad;
 }
 
