@@ -342,16 +342,18 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
   std::vector<std::vector<AllanCurve>> curves;
   for (const auto& stream : streams) curves.push_back(stream.curves(args.ci));
   // Decade factors the log reaches but a bounded stream cannot hold (the same on every channel).
-  if (!streams.empty() && !streams.front().factors_left_out().empty()) {
+  const std::vector<std::int64_t> not_held =
+      streams.empty() ? std::vector<std::int64_t>{} : streams.front().factors_left_out();
+  if (!not_held.empty()) {
     std::string list;
-    for (const std::int64_t m : streams.front().factors_left_out()) {
+    for (const std::int64_t m : not_held) {
       char text[64];
       std::snprintf(text, sizeof text, "%s%g s (m = %lld)", list.empty() ? "" : ", ",
                     static_cast<double>(m) / loaded.rate_hz, static_cast<long long>(m));
       list += text;
     }
     // The left-out factors start at a power of ten (1, 2 and 4 x 10^k share the odd part 5^k).
-    const std::int64_t first = streams.front().factors_left_out().front();
+    const std::int64_t first = not_held.front();
     char held[96];
     std::snprintf(held, sizeof held, "m = %lld (%g s)", static_cast<long long>(first / 10 * 4),
                   static_cast<double>(first / 10 * 4) / loaded.rate_hz);
