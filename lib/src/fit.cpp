@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "fit_internal.hpp"
+#include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/units.hpp"
@@ -111,8 +112,7 @@ double fit_unit(const AllanCurve& curve) {
   for (const auto& p : curve.points) {
     if (p.value.dev > 0 && std::isfinite(p.value.dev)) largest = std::max(largest, p.value.dev);
   }
-  if (largest == 0.0 || (largest >= kFitUnscaledMin && largest <= kFitUnscaledMax)) return 1.0;
-  return std::ldexp(1.0, std::ilogb(largest));
+  return detail::value_scale_for(largest, kFitUnscaledMin, kFitUnscaledMax);
 }
 
 void multiply_terms(std::optional<ChannelFit>& fit, double unit) {

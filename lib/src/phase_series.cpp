@@ -303,8 +303,8 @@ PhaseSeries PhaseSeriesBuilder::finish(double tau0_s) {
   return series;
 }
 
-double detail::value_scale_for(double largest) {
-  if (largest == 0.0 || (largest >= kUnscaledMin && largest <= kUnscaledMax)) return 1.0;
+double detail::value_scale_for(double largest, double unscaled_min, double unscaled_max) {
+  if (largest == 0.0 || (largest >= unscaled_min && largest <= unscaled_max)) return 1.0;
   return std::ldexp(1.0, std::ilogb(largest));
 }
 

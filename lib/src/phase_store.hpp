@@ -19,9 +19,11 @@ namespace sigmatau::detail {
 inline constexpr double kUnscaledMin = 0x1p-332;
 inline constexpr double kUnscaledMax = 0x1p332;
 
-/// 1 for a largest |value| in [kUnscaledMin, kUnscaledMax] (or 0), else the power of two
-/// 2^floor(log2 largest) that brings it to [1, 2).
-double value_scale_for(double largest);
+/// 1 for a largest |value| in [unscaled_min, unscaled_max] (or 0), else the power of two
+/// 2^floor(log2 largest) that brings it to [1, 2). The noise fit, whose covariances are fourth
+/// powers of the deviations, gives a narrower range (fit.cpp).
+double value_scale_for(double largest, double unscaled_min = kUnscaledMin,
+                       double unscaled_max = kUnscaledMax);
 
 struct CompactPhase;  // allan_sums.hpp (built in allan_sweep.cpp)
 
