@@ -156,8 +156,6 @@ int open_spill_file(const std::string& dir, std::size_t bytes) {
 
 #endif  // __linux__
 
-constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
-
 }  // namespace
 
 void enforce_spill_budget() {
@@ -200,24 +198,17 @@ DoubleBuffer::DoubleBuffer(std::size_t n, const PhaseStorage& storage) : size_(n
     PageReleaser::instance().add(p, bytes, storage.resident_bytes);
     return;
   }
-  // Anonymous pages: no zero-fill pass (fresh pages read as 0), and 2 MiB pages where Linux
-  // allows them ("madvise" THP mode): faulting a 1e8-point phase in 4 KiB pages costs more than
-  // computing it on a VM, and the sweeps touch many distant places of the array per block.
+  // Anonymous pages: no zero-fill pass (fresh pages read as 0). In 4 KiB pages: MADV_HUGEPAGE
+  // was measured slower end to end on the 2-core VM (adev at 1e8 samples: 4.2 s of system time
+  // against 1.5 s without it, bench/results_speed.md).
   void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-  const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHugePage - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
   data_ = static_cast<double*>(p);
   mapped_bytes_ = bytes;
 #else
   if (storage.spill) throw Error("spilling the phase to a file needs Linux");
   data_ = static_cast<double*>(std::calloc(n, sizeof(double)));
   if (!data_) throw std::bad_alloc();
-  (void)kHugePage;
 #endif
 }
 
