@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -388,14 +390,32 @@ std::vector<std::vector<AllanCurve>> run_stream(const AdevArguments& args,
 std::vector<std::vector<AllanCurve>> whole_log_curves(const AdevArguments& args,
                                                       const std::vector<Statistic>& stats,
                                                       const TauSpec& taus, EdfModel edf_model,
-                                                      LoadedChannels& loaded) {
+                                                      LoadedChannels& loaded,
+                                                      const std::function<void()>& checks) {
+  // The data checks only read the samples: with more than one thread they run beside the
+  // phases' construction (a pass over the log off the critical path) and end before the
+  // samples' memory is handed on. Their errors come first, as when they ran before.
+  std::future<void> job;
+  if (args.threads != 1) {
+    job = std::async(std::launch::async, checks);
+  } else {
+    checks();
+  }
   std::vector<PhaseSeries> series;
   series.reserve(loaded.log.channels.size());
-  for (auto& channel : loaded.log.channels) {
-    series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+  try {
+    for (const auto& channel : loaded.log.channels) {
+      series.push_back(PhaseSeries::from_samples(channel, loaded.kind, 1.0 / loaded.rate_hz));
+    }
+  } catch (...) {
+    if (job.valid()) job.get();
+    throw;
+  }
+  if (job.valid()) job.get();
+  for (std::size_t c = 0; c < series.size(); ++c) {
     // The samples' memory (read_log leaves room for one more point) becomes the sweep copy's.
-    series.back().recycle(std::move(channel));
-    std::vector<double>().swap(channel);
+    series[c].recycle(std::move(loaded.log.channels[c]));
+    std::vector<double>().swap(loaded.log.channels[c]);
   }
   return curves_per_statistic(series, stats, taus, args.ci, args.threads, edf_model,
                               args.log.input);
@@ -515,12 +535,17 @@ void run_adev(const AdevArguments& args) {
   } else {
     loaded = load_channels(args.log);
     samples = loaded.log.channels.front().size();
-    constant_value = constant_values(loaded);
-    outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
-                                loaded.channel_units, loaded.kind);
-    curves = loaded.log.timing.segment_starts.size() > 1
-                 ? split_curves(args, stats, taus, loaded)
-                 : whole_log_curves(args, stats, taus, edf_model, loaded);
+    const auto checks = [&] {
+      constant_value = constant_values(loaded);
+      outliers = outlier_warnings(loaded.log.channels, loaded.log.channel_names,
+                                  loaded.channel_units, loaded.kind);
+    };
+    if (loaded.log.timing.segment_starts.size() > 1) {
+      checks();
+      curves = split_curves(args, stats, taus, loaded);
+    } else {
+      curves = whole_log_curves(args, stats, taus, edf_model, loaded, checks);
+    }
   }
   std::vector<std::string> warnings;
   for (std::size_t c = 0; c < curves.size(); ++c) {

@@ -146,3 +146,97 @@ TEST_CASE("an accelerometer in g declared m/s^2 (and the reverse) is named") {
   CHECK(r->likely_unit == "m/s^2");
   CHECK_THROWS_AS(check_accel_unit({ax, ay}, {"ax", "ay"}, "g", kG), Error);
 }
+
+namespace {
+
+/// What a run warning must hold, found the plain way: one front-to-back min / max scan of the
+/// finite values, then every maximal run of equal values of >= min_run rows.
+struct ExpectedRuns {
+  double value = 0;
+  std::int64_t runs = 0, first_row = -1, first_rows = 0, longest_row = -1, longest_rows = 0,
+               rows_flagged = 0;
+};
+
+ExpectedRuns expected_runs(const std::vector<double>& x, std::int64_t min_run,
+                           bool (*keep)(double v, double lo, double hi), bool stuck) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double v : x) {
+    if (!std::isfinite(v)) continue;
+    if (v < lo) lo = v;
+    if (v > hi) hi = v;
+  }
+  ExpectedRuns e;
+  e.value = stuck ? 0.0 : (keep(lo, lo, hi) ? lo : hi);
+  for (std::size_t i = 0; i < x.size();) {
+    std::size_t j = i + 1;
+    while (j < x.size() && x[j] == x[i]) ++j;
+    const auto n = static_cast<std::int64_t>(j - i);
+    if (n >= min_run && keep(x[i], lo, hi)) {
+      if (stuck && (e.runs == 0 || n > e.longest_rows)) e.value = x[i];
+      if (e.runs == 0) e.first_row = static_cast<std::int64_t>(i), e.first_rows = n;
+      if (n > e.longest_rows) e.longest_row = static_cast<std::int64_t>(i), e.longest_rows = n;
+      ++e.runs;
+      e.rows_flagged += n;
+    }
+    i = j;
+  }
+  return e;
+}
+
+void check_same(const DataWarning& w, const ExpectedRuns& e) {
+  CHECK(w.runs == e.runs);
+  CHECK(w.first_row == e.first_row);
+  CHECK(w.first_rows == e.first_rows);
+  CHECK(w.longest_row == e.longest_row);
+  CHECK(w.longest_rows == e.longest_rows);
+  CHECK(w.rows_flagged == e.rows_flagged);
+  CHECK(w.value == e.value);
+  CHECK(std::signbit(w.value) == std::signbit(e.value));  // -0.0 and +0.0 print differently
+}
+
+}  // namespace
+
+TEST_CASE("check_runs' single pass finds what the plain scans find: extremes, zeros, non-finite") {
+  // The extremes come from four interleaved lanes and the runs of both checks from one pass:
+  // on channels whose extremes are -0.0 / +0.0 (equal, but printed apart: the first seen is
+  // kept), with infinities and NaN beside them, and lengths that are no multiple of four.
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 24; ++trial) {
+    const std::size_t n = 997 + static_cast<std::size_t>(trial) * 13;
+    std::vector<double> x = counts(white(n, 0.0, 2.0, 100 + trial), 3);
+    if (trial % 3 == 1) {  // the minimum is zero: -0.0 and +0.0, the first one varying
+      for (auto& v : x) v = std::abs(v);
+      const std::size_t a = rng() % n, b = rng() % n;
+      x[std::min(a, b)] = trial % 2 ? -0.0 : 0.0;
+      for (std::size_t i = 0; i < n; ++i) if (x[i] == 0 && rng() % 2) x[i] = -0.0;
+    }
+    if (trial % 3 == 2) {  // the maximum is zero
+      for (auto& v : x) v = -std::abs(v);
+      for (std::size_t i = 0; i < n; ++i) if (x[i] == 0 && rng() % 3 == 0) x[i] = -0.0;
+    }
+    if (trial % 4 == 0) x[rng() % n] = INFINITY, x[rng() % n] = -INFINITY;
+    if (trial % 5 == 0) x[rng() % n] = std::nan("");
+    const DataCheckOptions options{.stuck_min_run = trial % 2 ? 6 : 50,
+                                   .saturation_min_run = trial % 2 ? 9 : 5};
+    const auto runs = check_runs(x, "c", options);
+    auto expected = check_saturation(x, "c", options);
+    if (auto w = check_stuck(x, "c", options)) expected.push_back(*w);
+    REQUIRE(runs.size() == expected.size());
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      CHECK(runs[i].kind == expected[i].kind);
+      CHECK(runs[i].message == expected[i].message);
+      if (runs[i].kind == DataWarningKind::stuck) {
+        check_same(runs[i], expected_runs(x, options.stuck_min_run,
+                                          [](double, double, double) { return true; }, true));
+      } else if (runs[i].message.find("minimum") != std::string::npos) {
+        check_same(runs[i], expected_runs(x, options.saturation_min_run,
+                                          [](double v, double lo, double) { return v == lo; },
+                                          false));
+      } else {
+        check_same(runs[i], expected_runs(x, options.saturation_min_run,
+                                          [](double v, double, double hi) { return v == hi; },
+                                          false));
+      }
+    }
+  }
+}

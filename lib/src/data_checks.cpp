@@ -175,25 +175,60 @@ std::string to_string(DataWarningKind kind) {
   return "unknown";
 }
 
-std::vector<DataWarning> check_saturation(std::span<const double> values,
-                                          const std::string& channel,
-                                          const DataCheckOptions& options) {
-  check_min_run(options.saturation_min_run, "saturation");
-  std::vector<DataWarning> out;
-  double lo = INFINITY;
-  double hi = -INFINITY;
-  for (const double v : values) {
-    if (!std::isfinite(v)) continue;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
+namespace {
+
+/// The least and greatest finite values (INFINITY and -INFINITY when there are none), the
+/// values a front-to-back std::min / std::max scan keeps. Four independent lanes, since one
+/// chain of min and max was most of the saturation check's time; a value equal to another is
+/// the same double except for -0.0 and +0.0, where the scan keeps the first seen: a zero bound
+/// is found again by the plain scan.
+std::pair<double, double> finite_range(std::span<const double> values) {
+  const auto scan = [&] {
+    double lo = INFINITY;
+    double hi = -INFINITY;
+    for (const double v : values) {
+      if (!std::isfinite(v)) continue;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    return std::pair{lo, hi};
+  };
+  constexpr std::size_t kLanes = 4;
+  double lo[kLanes] = {INFINITY, INFINITY, INFINITY, INFINITY};
+  double hi[kLanes] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  const std::size_t n = values.size();
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t k = 0; k < kLanes; ++k) {
+      const double v = values[i + k];
+      const bool finite = std::isfinite(v);
+      lo[k] = std::min(lo[k], finite ? v : INFINITY);
+      hi[k] = std::max(hi[k], finite ? v : -INFINITY);
+    }
   }
-  if (!(lo < hi)) return out;  // empty, all non-finite, or constant
-  DataWarning at_lo = make_warning(DataWarningKind::saturation, channel, lo);
-  DataWarning at_hi = make_warning(DataWarningKind::saturation, channel, hi);
-  for_each_run(values, options.saturation_min_run, [&](std::int64_t s, std::int64_t n, double v) {
-    if (v == lo) add_run(at_lo, s, n);
-    if (v == hi) add_run(at_hi, s, n);
-  });
+  for (; i < n; ++i) {
+    const double v = values[i];
+    if (!std::isfinite(v)) continue;
+    lo[0] = std::min(lo[0], v);
+    hi[0] = std::max(hi[0], v);
+  }
+  for (std::size_t k = 1; k < kLanes; ++k) {
+    lo[0] = std::min(lo[0], lo[k]);
+    hi[0] = std::max(hi[0], hi[k]);
+  }
+  if (lo[0] == 0 || hi[0] == 0) return scan();
+  return {lo[0], hi[0]};
+}
+
+/// Adds saturation's run (at lo, at hi, or both) to its warnings.
+void add_saturation_run(DataWarning& at_lo, DataWarning& at_hi, std::int64_t start,
+                        std::int64_t length, double v) {
+  if (v == at_lo.value) add_run(at_lo, start, length);
+  if (v == at_hi.value) add_run(at_hi, start, length);
+}
+
+void finish_saturation(DataWarning& at_lo, DataWarning& at_hi, const DataCheckOptions& options,
+                       std::vector<DataWarning>& out) {
   for (DataWarning* w : {&at_lo, &at_hi}) {
     if (w->runs == 0) continue;
     w->message = run_summary(*w, options.saturation_min_run) + " at the channel " +
@@ -201,6 +236,35 @@ std::vector<DataWarning> check_saturation(std::span<const double> values,
                  " (saturation: the signal was clipped at the sensor's range)" + run_location(*w);
     out.push_back(std::move(*w));
   }
+}
+
+void add_stuck_run(DataWarning& w, std::int64_t start, std::int64_t length, double v) {
+  if (w.runs == 0 || length > w.longest_rows) w.value = v;
+  add_run(w, start, length);
+}
+
+std::optional<DataWarning> finish_stuck(DataWarning& w, const DataCheckOptions& options) {
+  if (w.runs == 0) return std::nullopt;
+  w.message = run_summary(w, options.stuck_min_run) + " (stuck sensor?), longest value " +
+              format_value(w.value) + run_location(w);
+  return std::move(w);
+}
+
+}  // namespace
+
+std::vector<DataWarning> check_saturation(std::span<const double> values,
+                                          const std::string& channel,
+                                          const DataCheckOptions& options) {
+  check_min_run(options.saturation_min_run, "saturation");
+  std::vector<DataWarning> out;
+  const auto [lo, hi] = finite_range(values);
+  if (!(lo < hi)) return out;  // empty, all non-finite, or constant
+  DataWarning at_lo = make_warning(DataWarningKind::saturation, channel, lo);
+  DataWarning at_hi = make_warning(DataWarningKind::saturation, channel, hi);
+  for_each_run(values, options.saturation_min_run, [&](std::int64_t s, std::int64_t n, double v) {
+    add_saturation_run(at_lo, at_hi, s, n, v);
+  });
+  finish_saturation(at_lo, at_hi, options, out);
   return out;
 }
 
@@ -208,20 +272,32 @@ std::optional<DataWarning> check_stuck(std::span<const double> values, const std
                                        const DataCheckOptions& options) {
   check_min_run(options.stuck_min_run, "stuck-sensor");
   DataWarning w = make_warning(DataWarningKind::stuck, channel, 0.0);
-  for_each_run(values, options.stuck_min_run, [&](std::int64_t s, std::int64_t n, double v) {
-    if (w.runs == 0 || n > w.longest_rows) w.value = v;
-    add_run(w, s, n);
-  });
-  if (w.runs == 0) return std::nullopt;
-  w.message = run_summary(w, options.stuck_min_run) + " (stuck sensor?), longest value " +
-              format_value(w.value) + run_location(w);
-  return w;
+  for_each_run(values, options.stuck_min_run,
+               [&](std::int64_t s, std::int64_t n, double v) { add_stuck_run(w, s, n, v); });
+  return finish_stuck(w, options);
 }
 
 std::vector<DataWarning> check_runs(std::span<const double> values, const std::string& channel,
                                     const DataCheckOptions& options) {
-  std::vector<DataWarning> out = check_saturation(values, channel, options);
-  if (auto w = check_stuck(values, channel, options)) out.push_back(std::move(*w));
+  // check_saturation then check_stuck, in one pass over the runs: both look at the same maximal
+  // runs, each keeping those of its own length.
+  check_min_run(options.saturation_min_run, "saturation");
+  check_min_run(options.stuck_min_run, "stuck-sensor");
+  std::vector<DataWarning> out;
+  const auto [lo, hi] = finite_range(values);
+  const bool saturation = lo < hi;  // otherwise empty, all non-finite, or constant
+  DataWarning at_lo = make_warning(DataWarningKind::saturation, channel, lo);
+  DataWarning at_hi = make_warning(DataWarningKind::saturation, channel, hi);
+  DataWarning stuck = make_warning(DataWarningKind::stuck, channel, 0.0);
+  const std::int64_t shortest =
+      saturation ? std::min(options.saturation_min_run, options.stuck_min_run)
+                 : options.stuck_min_run;
+  for_each_run(values, shortest, [&](std::int64_t s, std::int64_t n, double v) {
+    if (saturation && n >= options.saturation_min_run) add_saturation_run(at_lo, at_hi, s, n, v);
+    if (n >= options.stuck_min_run) add_stuck_run(stuck, s, n, v);
+  });
+  if (saturation) finish_saturation(at_lo, at_hi, options, out);
+  if (auto w = finish_stuck(stuck, options)) out.push_back(std::move(*w));
   return out;
 }
 
