@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "../lib/src/noise_identification.hpp"  // internal interface under test
+#include "sigmatau/allan_curve.hpp"
 #include "sigmatau/phase_series.hpp"
+#include "sigmatau/taus.hpp"
 #include "test_support.hpp"
 
 using namespace sigmatau;
@@ -118,5 +120,34 @@ TEST_CASE("the one-pass ACF identification leaves constant series to the exact o
     const PhaseSeries unit = PhaseSeries::from_rate(white(5000, 51), 1.0);
     CHECK(detail::acf_first_steps(series, octaves(series.size())) ==
           detail::acf_first_steps(unit, octaves(unit.size())));
+  }
+}
+
+TEST_CASE("curves with the identification pass on a spare thread equal the one-thread curves") {
+  // compute_allan_curves runs acf_first_steps beside the sweep when there are fewer curves than
+  // threads: every point (deviation, alpha, method, EDF, interval) must equal the serial one's.
+  const auto y = white(200000, 77);
+  const PhaseSeries series = PhaseSeries::from_rate(y, 0.01);
+  const std::vector<Statistic> stats = {Statistic::oadev, Statistic::mdev};
+  const TauSpec taus = parse_tau_spec("octave");
+  for (const unsigned threads : {1u, 3u, 8u}) {
+    const auto curves = compute_allan_curves({series}, stats, taus, 0.683, threads);
+    REQUIRE(curves.size() == 1);
+    for (std::size_t s = 0; s < stats.size(); ++s) {
+      const AllanCurve serial = compute_allan_curve(series, stats[s], taus, 0.683);
+      const AllanCurve& c = curves[0][s];
+      REQUIRE(c.points.size() == serial.points.size());
+      for (std::size_t i = 0; i < c.points.size(); ++i) {
+        const CurvePoint& a = c.points[i];
+        const CurvePoint& b = serial.points[i];
+        CHECK(a.value.m == b.value.m);
+        CHECK(a.value.dev == b.value.dev);
+        CHECK(a.confidence.noise.alpha == b.confidence.noise.alpha);
+        CHECK(a.confidence.noise.method == b.confidence.noise.method);
+        CHECK(a.confidence.edf == b.confidence.edf);
+        CHECK(a.confidence.interval.low == b.confidence.interval.low);
+        CHECK(a.confidence.interval.high == b.confidence.interval.high);
+      }
+    }
   }
 }

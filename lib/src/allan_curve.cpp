@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 #include <string>
+#include <thread>
 
 #include "allan_curve_assembly.hpp"
 #include "noise_identification.hpp"
@@ -137,8 +139,13 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
 
 }  // namespace detail
 
-AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
-                               const TauSpec& taus, double confidence_level, EdfModel edf_model) {
+namespace {
+
+/// compute_allan_curve; with `beside`, the one-pass identification of the smallest factors runs
+/// on a thread of its own while this one sweeps the deviations (both only read the phase; the
+/// identification is wanted from the first confidence interval on, after the sweep).
+AllanCurve allan_curve(const PhaseSeries& series, Statistic statistic, const TauSpec& taus,
+                       double confidence_level, EdfModel edf_model, bool beside) {
   // One buffer for the averaged series of every tau (sized by the first, smallest m): fresh
   // pages per tau cost more in kernel zeroing than the identification itself.
   std::unique_ptr<double[]> scratch;
@@ -153,9 +160,17 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
   std::sort(factors.begin(), factors.end());
   factors.erase(std::unique(factors.begin(), factors.end()), factors.end());
   if (factors.size() > kFirstStepFactors) factors.resize(kFirstStepFactors);
-  const std::vector<std::optional<int>> first_steps = detail::acf_first_steps(series, factors);
+  std::vector<std::optional<int>> first_steps;
+  std::future<std::vector<std::optional<int>>> pending;  // joined before factors goes
+  if (beside && !factors.empty()) {
+    pending = std::async(std::launch::async,
+                         [&series, &factors] { return detail::acf_first_steps(series, factors); });
+  } else {
+    first_steps = detail::acf_first_steps(series, factors);
+  }
   return detail::assemble_allan_curve(
       series, statistic, taus, confidence_level, edf_model, [&](std::int64_t m) {
+        if (pending.valid()) first_steps = pending.get();
         const auto known = std::lower_bound(factors.begin(), factors.end(), m);
         if (known != factors.end() && *known == m) {
           const auto& alpha = first_steps[static_cast<std::size_t>(known - factors.begin())];
@@ -170,12 +185,23 @@ AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
       });
 }
 
+}  // namespace
+
+AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
+                               const TauSpec& taus, double confidence_level, EdfModel edf_model) {
+  return allan_curve(series, statistic, taus, confidence_level, edf_model, false);
+}
+
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
     const std::vector<PhaseSeries>& channels, const std::vector<Statistic>& statistics,
     const TauSpec& taus, double confidence_level, unsigned threads, EdfModel edf_model) {
+  // Fewer curves than threads: each curve's identification pass takes a spare thread.
+  const unsigned workers =
+      threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+  const bool beside = channels.size() * statistics.size() < workers;
   return detail::curves_per_channel_and_statistic(
       channels.size(), statistics.size(), threads, [&](std::size_t c, std::size_t s) {
-        return compute_allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model);
+        return allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model, beside);
       });
 }
 
