@@ -40,7 +40,7 @@ TEST_CASE("curve_deviance of one point follows the chi-squared likelihood ratio"
   // either ratio is decisive.
   const std::int64_t n_phase = 4097;
   for (const std::int64_t m : {std::int64_t{64}, std::int64_t{1024}}) {
-    const detail::CovarianceBasis basis = detail::build_covariance_basis({m}, n_phase, kTau0, std::nullopt);
+    const detail::CovarianceBasis basis = detail::build_covariance_basis({m}, n_phase, kTau0, {});
     NoiseTerms unit;
     unit.white = 1.0;
     detail::Design d;
