@@ -46,7 +46,7 @@ TEST_CASE("curve_deviance of one point follows the chi-squared likelihood ratio"
     detail::Design d;
     d.a = Eigen::MatrixXd::Zero(1, detail::kTermCount);
     d.a(0, detail::term_index(NoiseTerm::white)) = sampled_avar(unit, m, Sampling{kTau0, 0, false});
-    detail::TermVector theta = detail::TermVector::Zero();
+    detail::TermVector theta = detail::TermVector::Zero(detail::kTermCount);
     theta(detail::term_index(NoiseTerm::white)) = 1e-6;
     const double mu = (d.a * theta)(0);
     const double nu = 2 * mu * mu / basis.covariance(Eigen::VectorXd(theta))(0, 0);

@@ -28,6 +28,7 @@ int term_index(NoiseTerm term) {
 }  // namespace detail
 
 std::string_view term_symbol(NoiseTerm term) {
+  if (term == NoiseTerm::gauss_markov) return "GM";
   static constexpr std::string_view kSymbols[] = {"Q", "N", "B", "K", "R"};
   return kSymbols[detail::term_index(term)];
 }
@@ -93,6 +94,8 @@ NoiseTerms ChannelFit::noise_terms() const {
       default: break;
     }
   }
+  // lead: one GM in the vocabulary until the GM-sum vocabulary lands.
+  if (!gauss_markov.empty()) t.gauss_markov = GaussMarkov{gauss_markov.front().sigma, gauss_markov.front().tau_c_s};
   return t;
 }
 
@@ -123,6 +126,11 @@ void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
     p.ci_high *= unit;
     p.upper_bound *= unit;
     p.adev_min *= unit;
+  }
+  for (GaussMarkovEstimate& g : fit->gauss_markov) {
+    g.sigma *= unit;
+    g.ci_low *= unit;
+    g.ci_high *= unit;
   }
   for (Contradiction& c : fit->contradictions) {  // deviations, as the terms
     c.reported *= unit;
@@ -250,7 +258,8 @@ const ChannelFit& NoiseFit::reported() const {
 std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& curve,
                                     const CurveSource& source, const FitOptions& options) {
   const Sampling sampling{source.tau0_s, source.flicker_taps, false};
-  const NoiseTerms model = fit.noise_terms();
+  NoiseTerms ieee = fit.noise_terms();  // the Gauss-Markov terms are added one by one below
+  ieee.gauss_markov.reset();
   std::vector<double> out;
   out.reserve(curve.points.size());
   for (const auto& p : curve.points) {
@@ -259,8 +268,17 @@ std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& cur
     const bool used = p.value.dev > 0 && std::isfinite(p.value.dev) && p.value.m >= 1 &&
                       source.n_phase_points - 2 * p.value.m >= 1 &&
                       tau >= options.tau_min_s * (1 - 1e-9) && tau <= options.tau_max_s * (1 + 1e-9);
-    out.push_back(used ? std::sqrt(sampled_avar(model, p.value.m, sampling))
-                       : std::numeric_limits<double>::quiet_NaN());
+    if (!used) {
+      out.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    double avar = sampled_avar(ieee, p.value.m, sampling);
+    for (const auto& g : fit.gauss_markov) {
+      NoiseTerms one;
+      one.gauss_markov = GaussMarkov{g.sigma, g.tau_c_s};
+      avar += sampled_avar(one, NoiseTerm::gauss_markov, p.value.m, sampling);
+    }
+    out.push_back(std::sqrt(avar));
   }
   return out;
 }

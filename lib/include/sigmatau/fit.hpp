@@ -51,7 +51,7 @@ inline constexpr std::array<NoiseTerm, 5> kFitTerms{
     NoiseTerm::quantization, NoiseTerm::white, NoiseTerm::bias_instability,
     NoiseTerm::rate_random_walk, NoiseTerm::rate_ramp};
 
-/// "Q", "N", "B", "K", "R" (Error for Gauss-Markov and sinusoid, which the fit does not model).
+/// "Q", "N", "B", "K", "R", "GM" (Error for the sinusoid, which the fit does not model).
 std::string_view term_symbol(NoiseTerm term);
 /// Parses "N,B,K" (symbols Q N B K R, case-sensitive, any order, no repeats) for --terms.
 /// Throws Error naming the text and the bad item.
@@ -84,6 +84,9 @@ struct FitOptions {
   /// sensor that filters its output departs from every noise term at the shortest taus.
   double tau_min_s = 0;
   double tau_max_s = std::numeric_limits<double>::infinity();
+  /// Whether the joint fit may add Gauss-Markov terms (at most 3) when no model of the
+  /// candidates describes the curve (p < 1e-3; --no-gauss-markov turns it off).
+  bool gauss_markov = true;
 };
 
 /// Family-wise two-sided level of the curve points' intervals the consistency guards use,
@@ -144,10 +147,26 @@ struct ParameterEstimate {
   /// Slopes: points on its slope line (B: 1, the minimum). 0 for a term not in the model
   /// (rise_without_floor reads B's).
   int leading_points = 0;
+  /// B only, joint fit with Gauss-Markov terms and no flicker: true when B is not in the model
+  /// but read from the model's ADEV floor (its smallest ADEV over the fitted taus / 0.664, the
+  /// bias stability a data sheet quotes), value and interval set, in_model false.
+  bool from_model_floor = false;
   /// Curve read-outs only (NoiseFit::readings): the factor (<= 1) by which the read-out was
   /// lowered so that the term alone stays within the curve at every fitted tau (the -1/2 line
   /// fitted through a filtered or bending curve crosses it); 1 when it was not.
   double lowered_to_curve = 1;
+};
+
+/// One first-order Gauss-Markov term of a joint fit (fit_gauss_markov.cpp's search), SI.
+struct GaussMarkovEstimate {
+  double sigma = 0;    ///< stationary standard deviation [rad/s | m/s^2]
+  double ci_low = 0;   ///< interval of sigma at the fit's level (T_c held at its estimate)
+  double ci_high = 0;
+  double tau_c_s = 0;  ///< correlation time [s] (searched on a grid and refined; no interval)
+  /// Effective degrees of freedom of sigma^2 (Satterthwaite), NaN when not applicable.
+  double edf = std::numeric_limits<double>::quiet_NaN();
+  /// Fitted taus at which this term's AVAR exceeds the sum of the other terms'.
+  int leading_points = 0;
 };
 
 /// The result of one method on one channel.
@@ -155,13 +174,16 @@ struct ChannelFit {
   FitMethod method = FitMethod::joint;    ///< joint or slopes
   std::vector<NoiseTerm> model_terms;     ///< in kFitTerms order
   std::vector<ParameterEstimate> parameters;  ///< one per candidate term, kFitTerms order
+  /// Joint fit only: the Gauss-Markov terms added because no model of the five IEEE terms
+  /// described the curve (p below 1e-3), ascending T_c; empty otherwise.
+  std::vector<GaussMarkovEstimate> gauss_markov;
   /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
   /// weight loop. Slopes: NaN, NaN, 0.
   double chi_squared = 0;
   double bic = 0;
   int iterations = 0;
   int points = 0;  ///< AVAR points used
-  /// Joint fit: goodness of fit. dof = points - terms kept; p_value = P(chi2_dof > chi_squared)
+  /// Joint fit: goodness of fit. dof = points - parameters (2 per Gauss-Markov term); p_value = P(chi2_dof > chi_squared)
   /// (near 0: no model of these terms describes the curve); misfit_tau_s the tau of the point
   /// furthest from the model in standard deviations (EDF-based). Slopes: 0, NaN, NaN.
   int dof = 0;
