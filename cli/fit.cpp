@@ -125,6 +125,12 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
       j["ci_high"] = p.ci_high;
       j["leading_points"] = p.leading_points;
       if (p.lowered_to_curve < 1) j["lowered_to_curve"] = p.lowered_to_curve;
+    } else if (p.from_model_floor) {
+      // Gauss-Markov terms stand in for flicker: B read from the model's ADEV floor.
+      j["value"] = p.value;
+      j["ci_low"] = p.ci_low;
+      j["ci_high"] = p.ci_high;
+      j["from_model_floor"] = true;
     } else {
       j["upper_bound"] = p.upper_bound;
     }
@@ -137,6 +143,18 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
     params[std::string(term_symbol(p.term))] = j;
   }
   return params;
+}
+
+nlohmann::json gauss_markov_json(const ChannelFit& fit, Sensor sensor) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& g : fit.gauss_markov) {
+    nlohmann::json j = {{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
+                        {"tau_c_s", g.tau_c_s}, {"leading_points", g.leading_points},
+                        {"unit", std::string(units_of(NoiseTerm::gauss_markov, sensor).si)}};
+    if (std::isfinite(g.edf)) j["edf"] = g.edf;
+    out.push_back(j);
+  }
+  return out;
 }
 
 nlohmann::json terms_json(const ChannelFit& fit) {
@@ -185,6 +203,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     j["quantity"] = c.sensor == Sensor::gyro ? "angular_rate" : "specific_force";
     j["model_terms"] = terms_json(primary);
     j["parameters"] = parameters_json(primary, c.sensor);
+    j["gauss_markov"] = gauss_markov_json(primary, c.sensor);
     j["method"] = std::string(to_string(primary.method));
     j["points"] = primary.points;
     j["warnings"] = channel_warnings(c);
@@ -197,6 +216,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       const ChannelFit& joint = *c.fit.joint;
       j["joint"] = {{"model_terms", terms_json(joint)},
                     {"parameters", parameters_json(joint, c.sensor)},
+                    {"gauss_markov", gauss_markov_json(joint, c.sensor)},
                     {"method", "joint"},
                     {"chi_squared", joint.chi_squared},
                     {"bic", joint.bic},
@@ -252,9 +272,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const double f = convert(1.0, u.si, sheet);
     const std::string sym(term_symbol(p.term));
     const std::string nm(term_name(p.term, sensor));
-    if (p.in_model) {
-      std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
-                    p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str());
+    if (p.in_model || p.from_model_floor) {
+      std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s%s", sym.c_str(), nm.c_str(),
+                    p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str(),
+                    p.from_model_floor ? " (not a flicker term: the model's ADEV floor / 0.664)" : "");
     } else {
       std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
                     sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, sheet.c_str());
@@ -266,9 +287,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
       // The curve's own minimum is printed with its value: beside the model's floor, its tau
       // alone read as "the curve's minimum is the floor", 5-7x off when the model misfits.
       char floor[80];
-      std::snprintf(floor, sizeof floor, "%.5g %s", kFlickerFloorFactor * (p.in_model ? p.value : p.upper_bound) * f,
+      const bool value = p.in_model || p.from_model_floor;
+      std::snprintf(floor, sizeof floor, "%.5g %s", kFlickerFloorFactor * (value ? p.value : p.upper_bound) * f,
                     sheet.c_str());
-      out << "  (ADEV floor 0.664 B " << (p.in_model ? "= " : "< ") << floor
+      out << "  (ADEV floor 0.664 B " << (value ? "= " : "< ") << floor
           << ", as data sheets print bias stability";
       if (std::isfinite(p.tau_min_s) && std::isfinite(p.adev_min)) {
         char minimum[120];
@@ -279,6 +301,16 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
       out << ")";
     }
     out << "\n";
+  }
+  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
+    const auto& e = fit.gauss_markov[g];
+    const TermUnits u = units_of(NoiseTerm::gauss_markov, sensor);
+    const std::string sheet(u.sheet);
+    const double f = convert(1.0, u.si, sheet);
+    const std::string sym = "GM" + std::to_string(g + 1);
+    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, T_c = %.4g s\n", sym.c_str(),
+                  "Gauss-Markov sigma", e.ci_low * f, e.sigma * f, e.ci_high * f, sheet.c_str(), e.tau_c_s);
+    out << line;
   }
   for (const auto& c : fit.contradictions) out << "   contradicted by the curve: " << describe(c, sensor) << "\n";
   if (fit.method == FitMethod::joint) {

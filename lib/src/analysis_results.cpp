@@ -85,10 +85,25 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
       if (p.lowered_to_curve < 1) entry["lowered_to_curve"] = p.lowered_to_curve;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
+    } else if (p.from_model_floor) {
+      // Gauss-Markov terms stand in for flicker: B read from the model's ADEV floor.
+      entry["value"] = p.value;
+      entry["ci_low"] = p.ci_low;
+      entry["ci_high"] = p.ci_high;
+      entry["from_model_floor"] = true;
+      if (std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+      if (std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
     } else {
       entry["upper_bound"] = p.upper_bound;
     }
     parameters[key] = entry;
+  }
+  json gauss_markov = json::array();
+  for (const auto& g : fit.gauss_markov) {
+    gauss_markov.push_back({{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
+                            {"tau_c_s", g.tau_c_s}, {"edf", number_or_null(g.edf)},
+                            {"leading_points", g.leading_points},
+                            {"unit", std::string(si_unit(NoiseTerm::gauss_markov, sensor))}});
   }
   // The fitted model and each term's IEEE asymptote on a log grid over the curve's taus.
   const NoiseTerms terms = fit.noise_terms();
@@ -113,10 +128,18 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
                           {"adev", adev_line(term, p.value, tau_read)}});
     }
   }
+  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
+    NoiseTerms one;
+    one.gauss_markov = GaussMarkov{fit.gauss_markov[g].sigma, fit.gauss_markov[g].tau_c_s};
+    std::vector<double> line;
+    for (double tau : taus) line.push_back(std::sqrt(continuous_avar(one, NoiseTerm::gauss_markov, tau)));
+    per_term["GM" + std::to_string(g + 1)] = line;
+  }
   return {{"name", name},
           {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
           {"model_terms", model_terms},
           {"parameters", parameters},
+          {"gauss_markov", gauss_markov},
           {"method", std::string(to_string(fit.method))},
           {"chi_squared", number_or_null(fit.chi_squared)},
           {"bic", number_or_null(fit.bic)},

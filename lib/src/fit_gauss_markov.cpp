@@ -11,10 +11,11 @@
 //
 // Search, one GM at a time (GMWM practice describes a real MEMS bias by a sum of a few):
 //  1. With Sigma fixed at the current model's covariance, every T_c on a grid of
-//     kGridPerOctave per octave from kGridShortest tau0 to N tau0 is tried with every subset of
-//     the IEEE candidates (the new term may stand in for B or K): the smallest
-//     chi2 + (IEEE terms + 2 per GM) ln n + the priors wins. A subset that puts a GM at 0 is
-//     the smaller model and is skipped.
+//     kGridPerOctave per octave from kGridShortest tau0 to N tau0 is tried with the current
+//     IEEE terms (every candidate at the first addition; the NNLS sets unneeded ones to 0), the
+//     smallest chi2 wins; then every subset of the IEEE candidates is tried with it (the new
+//     term may stand in for B or K): the smallest chi2 + (IEEE terms + 2 per GM) ln n + the
+//     priors wins. A subset that puts a GM at 0 is the smaller model and is skipped.
 //  2. The winner's T_c is refined by golden-section search in ln T_c between its grid
 //     neighbours, Sigma still fixed.
 //  3. The covariance basis is built with the GMs' T_c and the weights are iterated under the
@@ -163,6 +164,7 @@ std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std
 
   std::optional<ExtendedModel> best;
   std::vector<double> tau_c;
+  Mask current = candidates;
   // The grid: kGridShortest tau0 .. N tau0.
   std::vector<double> grid;
   const double longest = static_cast<double>(source.n_phase_points) * tau0;
@@ -170,8 +172,9 @@ std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std
   const double step = std::exp2(1.0 / kGridPerOctave);
 
   for (int g = 0; g < kMaxGaussMarkovTerms; ++g) {
-    // 1. Grid, Sigma fixed.
-    Choice choice;
+    // 1. Grid, Sigma fixed, with the current IEEE terms (all candidates on the first
+    // addition); then the IEEE terms chosen again at the T_c found.
+    double best_chi2 = std::numeric_limits<double>::infinity();
     double chosen = 0;
     for (const double t : grid) {
       bool taken = false;  // a T_c within a grid step of one already in the model adds nothing new
@@ -179,12 +182,16 @@ std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std
       if (taken) continue;
       std::vector<double> trial_tc = tau_c;
       trial_tc.push_back(t);
-      const Choice c = best_subset(design_with(d, ms, tau0, trial_tc), candidates, sigma, penalty);
-      if (c.criterion < choice.criterion) {
-        choice = c;
+      const Gls fit = gls(design_with(d, ms, tau0, trial_tc), current | gm_bits(g + 1), sigma);
+      if (fit.chi2 < best_chi2) {
+        best_chi2 = fit.chi2;
         chosen = t;
       }
     }
+    if (!(chosen > 0)) break;
+    std::vector<double> chosen_tc = tau_c;
+    chosen_tc.push_back(chosen);
+    const Choice choice = best_subset(design_with(d, ms, tau0, chosen_tc), candidates, sigma, penalty);
     if (!(choice.criterion < std::numeric_limits<double>::infinity())) break;
     ExtendedModel model;
     model.tau_c_s = tau_c;
@@ -211,6 +218,7 @@ std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std
     best_criterion = model.criterion;
     tau_c = model.tau_c_s;
     sigma = model.fit.sigma;
+    current = model.mask & ((1u << kTermCount) - 1);
     best = std::move(model);
   }
   return best;
