@@ -222,6 +222,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
                     {"bic", joint.bic},
                     {"dof", joint.dof},
                     {"p_value", joint.p_value},
+                    {"model_error", joint.model_error},
                     {"misfit_tau_s", joint.misfit_tau_s},
                     {"contradictions", contradictions_json(joint, c.sensor)}};
     } else if (c.fit.joint) {
@@ -229,6 +230,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       j["bic"] = primary.bic;
       j["dof"] = primary.dof;
       j["p_value"] = primary.p_value;
+      j["model_error"] = primary.model_error;
       j["misfit_tau_s"] = primary.misfit_tau_s;
     }
     if (c.fit.joint && c.fit.slopes) {

@@ -145,6 +145,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"bic", number_or_null(fit.bic)},
           {"dof", fit.dof},
           {"p_value", number_or_null(fit.p_value)},
+          {"model_error", fit.model_error},
           {"misfit_tau_s", number_or_null(fit.misfit_tau_s)},
           {"misfit_at_shortest_taus", fit.misfit_at_shortest_taus},
           {"model_adev", {{"tau", taus}, {"adev", total}}},

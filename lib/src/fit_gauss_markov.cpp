@@ -19,12 +19,13 @@
 //  2. The winner's T_c is refined by golden-section search in ln T_c between its grid
 //     neighbours, Sigma still fixed.
 //  3. The covariance basis is built with the GMs' T_c and the weights are iterated under the
-//     model (fit_joint.cpp's iterate); each T_c is refined once more under the new weights and
-//     the weights iterated again.
-//  4. The model is kept when its criterion (curve_deviance, as select_model's second stage:
-//     each model judged with its own weights) + (parameters) ln n + priors is below the
-//     previous model's; the search stops at the first addition that does not lower it, or at
-//     kMaxGaussMarkovTerms.
+//     model with the model error (fit_model_error.cpp: the search runs only on curves no IEEE
+//     model describes); each T_c is refined once more under the new weights and the weights
+//     iterated again.
+//  4. The model is kept when its criterion (the Gaussian deviance of the curve under its own
+//     widened weights, kappa at its maximum likelihood) + (parameters) ln n + priors is below
+//     the previous model's; the search stops at the first addition that does not lower it, or
+//     at kMaxGaussMarkovTerms.
 // A GM counts two parameters (sigma and T_c) in every penalty.
 #include "fit_gauss_markov.hpp"
 
@@ -125,13 +126,21 @@ double refine(const Design& d, const std::vector<std::int64_t>& ms, double tau0_
   return std::exp(f1 <= f2 ? x1 : x2);
 }
 
-/// Builds the basis for `model`'s T_c, iterates its weights and sets its criterion.
+/// Iterates `model`'s weights with the model error under its basis and sets its criterion.
+void settle_weights(ExtendedModel& model) {
+  const WidenedFit w = iterate_widened(model.design, model.mask, *model.basis);
+  model.fit = w.fit;
+  model.kappa = w.kappa;
+  model.mask = used_terms(model.fit.fit.theta);
+  model.criterion = w.deviance + parameter_count(model.mask) * std::log(static_cast<double>(model.design.v.size())) +
+                    prior_penalty(model.mask);
+}
+
+/// Builds the basis for `model`'s T_c, then settle_weights.
 void settle(ExtendedModel& model, const std::vector<std::int64_t>& ms, const CurveSource& source) {
   model.basis = std::make_shared<const CovarianceBasis>(
       build_covariance_basis(ms, source.n_phase_points, source.tau0_s, model.tau_c_s));
-  model.fit = iterate(model.design, model.mask, *model.basis);
-  model.mask = used_terms(model.fit.fit.theta);
-  model.criterion = model_criterion(model.design, model.fit.fit.theta, *model.basis);
+  settle_weights(model);
 }
 
 }  // namespace
@@ -147,22 +156,18 @@ Eigen::VectorXd gauss_markov_column(const std::vector<std::int64_t>& m, double t
   return col;
 }
 
-double model_criterion(const Design& d, const TermVector& theta, const CovarianceBasis& basis) {
-  const Mask used = used_terms(theta);
-  return curve_deviance(d, theta, basis) +
-         parameter_count(used) * std::log(static_cast<double>(d.v.size())) + prior_penalty(used);
-}
-
-std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std::vector<std::int64_t>& ms,
-                                                      const CurveSource& source, Mask base, Mask candidates,
-                                                      const CovarianceBasis& basis) {
+ExtendedModel extend_with_gauss_markov(const Design& d, const std::vector<std::int64_t>& ms,
+                                       const CurveSource& source, Mask base, Mask candidates,
+                                       std::shared_ptr<const CovarianceBasis> basis) {
   const double penalty = std::log(static_cast<double>(d.v.size()));
   const double tau0 = source.tau0_s;
-  const Iterated base_fit = iterate(d, base, basis);
-  double best_criterion = model_criterion(d, base_fit.fit.theta, basis);
-  Eigen::MatrixXd sigma = base_fit.sigma;
-
-  std::optional<ExtendedModel> best;
+  ExtendedModel best;
+  best.design = d;
+  best.basis = std::move(basis);
+  best.mask = base;
+  settle_weights(best);
+  double best_criterion = best.criterion;
+  Eigen::MatrixXd sigma = best.fit.sigma;
   std::vector<double> tau_c;
   Mask current = candidates;
   // The grid: kGridShortest tau0 .. N tau0.

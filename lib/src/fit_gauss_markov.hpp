@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "fit_model_error.hpp"
 #include "fit_select.hpp"
 
 namespace sigmatau::detail {
@@ -31,20 +32,17 @@ struct ExtendedModel {
   Design design;
   std::shared_ptr<const CovarianceBasis> basis;
   Mask mask = 0;
-  Iterated fit;
-  double criterion = 0;  ///< curve_deviance + (parameters) ln n + priors
+  Iterated fit;          ///< weights with the model error (fit_model_error.hpp)
+  double kappa = 0;      ///< relative model error of the weights
+  double criterion = 0;  ///< widened deviance + (parameters) ln n + priors
 };
 
-/// The criterion of `fit` (weights iterated under `mask`) on `d` with `basis`: curve_deviance
-/// + (IEEE terms + 2 per Gauss-Markov term) ln n + the priors of select_model.
-double model_criterion(const Design& d, const TermVector& theta, const CovarianceBasis& basis);
-
-/// Adds Gauss-Markov terms, one at a time, to the IEEE model `base` (a subset of
-/// `candidates`; the IEEE terms are chosen again with each addition) while the criterion
-/// falls; nullopt when the first addition does not beat `base`. `ms` are the design's
-/// averaging factors.
-std::optional<ExtendedModel> extend_with_gauss_markov(const Design& d, const std::vector<std::int64_t>& ms,
-                                                      const CurveSource& source, Mask base, Mask candidates,
-                                                      const CovarianceBasis& basis);
+/// Fits the rejected IEEE model `base` (a subset of `candidates`) with misspecification-aware
+/// weights (iterate_widened) and adds Gauss-Markov terms, one at a time (the IEEE terms chosen
+/// again with each addition), while the criterion falls. The result holds no Gauss-Markov
+/// term when the first addition does not lower it. `ms` are the design's averaging factors.
+ExtendedModel extend_with_gauss_markov(const Design& d, const std::vector<std::int64_t>& ms,
+                                       const CurveSource& source, Mask base, Mask candidates,
+                                       std::shared_ptr<const CovarianceBasis> basis);
 
 }  // namespace sigmatau::detail

@@ -303,17 +303,18 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
 
   Iterated final_fit = iterate(d, model, *basis);
   std::vector<double> gm_tau_c;
+  double model_error = 0;
   // No model of the IEEE terms describes the curve: Gauss-Markov terms may (fit_gauss_markov.cpp).
   if (options.terms.empty() && options.gauss_markov &&
       gof_p_value(final_fit.fit.chi2, static_cast<int>(n) - count_positive(final_fit.fit.theta)) <
           kExtendBelowPValue) {
-    if (auto ext = extend_with_gauss_markov(d, ms, source, model, mask_of(options.candidates), *basis)) {
-      d = std::move(ext->design);
-      basis = std::move(ext->basis);
-      model = ext->mask;
-      final_fit = std::move(ext->fit);
-      gm_tau_c = std::move(ext->tau_c_s);
-    }
+    ExtendedModel ext = extend_with_gauss_markov(d, ms, source, model, mask_of(options.candidates), basis);
+    d = std::move(ext.design);
+    basis = std::move(ext.basis);
+    model = ext.mask;
+    final_fit = std::move(ext.fit);
+    gm_tau_c = std::move(ext.tau_c_s);
+    model_error = ext.kappa;
   }
   const Eigen::MatrixXd cov = theta_covariance(final_fit.fit);
   const double level = options.confidence_level;
@@ -324,10 +325,12 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   out.method = FitMethod::joint;
   out.points = static_cast<int>(n);
   out.iterations = final_fit.iterations;
-  out.chi_squared = final_fit.fit.chi2;
+  // Goodness of fit from the estimates' own covariance, whatever the weights.
+  out.chi_squared = model_error > 0 ? own_chi2(d, final_fit.fit.theta, *basis) : final_fit.fit.chi2;
+  out.model_error = model_error;
   // A Gauss-Markov term has two parameters: sigma and T_c.
   const int parameters = count_positive(final_fit.fit.theta) + static_cast<int>(gm_tau_c.size());
-  out.bic = final_fit.fit.chi2 + parameters * std::log(static_cast<double>(n));
+  out.bic = out.chi_squared + parameters * std::log(static_cast<double>(n));
   out.dof = static_cast<int>(n) - parameters;
   out.p_value = gof_p_value(out.chi_squared, out.dof);
   {

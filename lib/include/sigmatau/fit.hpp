@@ -188,6 +188,10 @@ struct ChannelFit {
   /// furthest from the model in standard deviations (EDF-based). Slopes: 0, NaN, NaN.
   int dof = 0;
   double p_value = std::numeric_limits<double>::quiet_NaN();
+  /// Joint fit rejected by its own covariance (p < 1e-3): the relative model error kappa of its
+  /// weights, Sigma + kappa^2 diag(model AVAR^2), by maximum likelihood (docs/fit.md): the
+  /// intervals include the scatter the model leaves. 0 when the fit was not rejected.
+  double model_error = 0;
   double misfit_tau_s = std::numeric_limits<double>::quiet_NaN();
   /// The furthest point is among the four shortest taus fitted: a sensor's own filtering (the
   /// fit bends toward the filtered points, so the furthest is among them or just after them).
