@@ -174,7 +174,7 @@ nlohmann::json contradictions_json(const ChannelFit& fit, Sensor sensor) {
 std::vector<std::string> channel_warnings(const Channel& c) {
   std::vector<std::string> out;
   if (!c.fit.joint) return out;
-  for (const std::string& w : {misfit_warning(*c.fit.joint, c.name),
+  for (const std::string& w : {misfit_warning(*c.fit.joint, c.name), left_out_warning(*c.fit.joint, c.name),
                                short_log_warning(*c.fit.joint, c.name),
                                readings_warning(c.fit, c.name, c.sensor)}) {
     if (!w.empty()) out.push_back(w);
@@ -223,6 +223,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
                     {"dof", joint.dof},
                     {"p_value", joint.p_value},
                     {"model_error", joint.model_error},
+                    {"left_out_taus_s", joint.left_out_taus_s},
                     {"misfit_tau_s", joint.misfit_tau_s},
                     {"contradictions", contradictions_json(joint, c.sensor)}};
     } else if (c.fit.joint) {
@@ -231,6 +232,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       j["dof"] = primary.dof;
       j["p_value"] = primary.p_value;
       j["model_error"] = primary.model_error;
+      j["left_out_taus_s"] = primary.left_out_taus_s;
       j["misfit_tau_s"] = primary.misfit_tau_s;
     }
     if (c.fit.joint && c.fit.slopes) {

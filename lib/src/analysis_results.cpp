@@ -146,6 +146,7 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
           {"dof", fit.dof},
           {"p_value", number_or_null(fit.p_value)},
           {"model_error", fit.model_error},
+          {"left_out_taus_s", fit.left_out_taus_s},
           {"misfit_tau_s", number_or_null(fit.misfit_tau_s)},
           {"misfit_at_shortest_taus", fit.misfit_at_shortest_taus},
           {"model_adev", {{"tau", taus}, {"adev", total}}},
@@ -357,6 +358,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const bool readings = fit.readings.has_value();
       const Sensor sensor = channel.role->sensor;
       if (const std::string w = misfit_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
+      if (const std::string w = left_out_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       if (const std::string w = short_log_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       if (const std::string w = readings_warning(fit, channel.name, sensor); !w.empty()) warnings.push_back(w);
       if (c < results["channels"].size()) {

@@ -192,6 +192,10 @@ struct ChannelFit {
   /// weights, Sigma + kappa^2 diag(model AVAR^2), by maximum likelihood (docs/fit.md): the
   /// intervals include the scatter the model leaves. 0 when the fit was not rejected.
   double model_error = 0;
+  /// Joint fit only: the shortest taus left out as bent by the sensor's own filter (fit_noise:
+  /// the fit was rejected, departed most there, and described the rest better without them),
+  /// ascending [s]; empty when none was.
+  std::vector<double> left_out_taus_s;
   double misfit_tau_s = std::numeric_limits<double>::quiet_NaN();
   /// The furthest point is among the four shortest taus fitted: a sensor's own filtering (the
   /// fit bends toward the filtered points, so the furthest is among them or just after them).
@@ -246,6 +250,10 @@ void check_tau_range(double tau_min_s, double tau_max_s);
 inline constexpr double kMisfitPValue = 1e-3;
 /// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel);
+
+/// A warning naming `channel` when the joint fit left out its shortest taus as bent by the
+/// sensor's own filter (ChannelFit::left_out_taus_s), else "".
+std::string left_out_warning(const ChannelFit& fit, const std::string& channel);
 
 /// A warning naming `channel` when the curve's read-outs stand in for the joint fit
 /// (NoiseFit::readings): why, each contradiction (values in `sensor`'s data-sheet units), and
