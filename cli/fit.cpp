@@ -157,6 +157,16 @@ nlohmann::json gauss_markov_json(const ChannelFit& fit, Sensor sensor) {
   return out;
 }
 
+nlohmann::json sinusoid_json(const ChannelFit& fit, Sensor sensor) {
+  if (!fit.sinusoid) return nullptr;
+  const auto& s = *fit.sinusoid;
+  nlohmann::json j = {{"amplitude", s.amplitude}, {"ci_low", s.ci_low}, {"ci_high", s.ci_high},
+                      {"frequency_hz", s.frequency_hz}, {"leading_points", s.leading_points},
+                      {"unit", std::string(units_of(NoiseTerm::sinusoid, sensor).si)}};
+  if (std::isfinite(s.edf)) j["edf"] = s.edf;
+  return j;
+}
+
 nlohmann::json terms_json(const ChannelFit& fit) {
   nlohmann::json t = nlohmann::json::array();
   for (const auto term : fit.model_terms) t.push_back(std::string(term_symbol(term)));
@@ -204,6 +214,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     j["model_terms"] = terms_json(primary);
     j["parameters"] = parameters_json(primary, c.sensor);
     j["gauss_markov"] = gauss_markov_json(primary, c.sensor);
+    j["sinusoid"] = sinusoid_json(primary, c.sensor);
     j["method"] = std::string(to_string(primary.method));
     j["points"] = primary.points;
     j["warnings"] = channel_warnings(c);
@@ -217,6 +228,7 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       j["joint"] = {{"model_terms", terms_json(joint)},
                     {"parameters", parameters_json(joint, c.sensor)},
                     {"gauss_markov", gauss_markov_json(joint, c.sensor)},
+                    {"sinusoid", sinusoid_json(joint, c.sensor)},
                     {"method", "joint"},
                     {"chi_squared", joint.chi_squared},
                     {"bic", joint.bic},
@@ -314,6 +326,20 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const std::string sym = "GM" + std::to_string(g + 1);
     std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, T_c = %.4g s\n", sym.c_str(),
                   "Gauss-Markov sigma", e.ci_low * f, e.sigma * f, e.ci_high * f, sheet.c_str(), e.tau_c_s);
+    out << line;
+  }
+  if (fit.sinusoid) {
+    const auto& e = *fit.sinusoid;
+    const TermUnits u = units_of(NoiseTerm::sinusoid, sensor);
+    const std::string sheet(u.sheet);
+    const double f = convert(1.0, u.si, sheet);
+    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, f = %.4g Hz\n", "SIN",
+                  "sinusoid amplitude", e.ci_low * f, e.amplitude * f, e.ci_high * f, sheet.c_str(), e.frequency_hz);
+    out << line;
+  }
+  if (fit.model_error > 0) {
+    std::snprintf(line, sizeof line, "   weights include a relative model error of %.3g (the intervals carry the scatter the model leaves)\n",
+                  fit.model_error);
     out << line;
   }
   for (const auto& c : fit.contradictions) out << "   contradicted by the curve: " << describe(c, sensor) << "\n";

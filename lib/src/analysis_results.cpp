@@ -135,8 +135,22 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
     for (double tau : taus) line.push_back(std::sqrt(continuous_avar(one, NoiseTerm::gauss_markov, tau)));
     per_term["GM" + std::to_string(g + 1)] = line;
   }
+  json sinusoid = nullptr;
+  if (fit.sinusoid) {
+    const auto& e = *fit.sinusoid;
+    sinusoid = {{"amplitude", e.amplitude}, {"ci_low", e.ci_low}, {"ci_high", e.ci_high},
+                {"frequency_hz", e.frequency_hz}, {"edf", number_or_null(e.edf)},
+                {"leading_points", e.leading_points},
+                {"unit", std::string(si_unit(NoiseTerm::sinusoid, sensor))}};
+    NoiseTerms one;
+    one.sinusoid = Sinusoid{e.amplitude, e.frequency_hz, 0.0};
+    std::vector<double> line;
+    for (double tau : taus) line.push_back(std::sqrt(continuous_avar(one, NoiseTerm::sinusoid, tau)));
+    per_term["SIN"] = line;
+  }
   return {{"name", name},
           {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
+          {"sinusoid", sinusoid},
           {"model_terms", model_terms},
           {"parameters", parameters},
           {"gauss_markov", gauss_markov},

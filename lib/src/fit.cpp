@@ -29,6 +29,7 @@ int term_index(NoiseTerm term) {
 
 std::string_view term_symbol(NoiseTerm term) {
   if (term == NoiseTerm::gauss_markov) return "GM";
+  if (term == NoiseTerm::sinusoid) return "SIN";
   static constexpr std::string_view kSymbols[] = {"Q", "N", "B", "K", "R"};
   return kSymbols[detail::term_index(term)];
 }
@@ -96,6 +97,7 @@ NoiseTerms ChannelFit::noise_terms() const {
   }
   // lead: one GM in the vocabulary until the GM-sum vocabulary lands.
   if (!gauss_markov.empty()) t.gauss_markov = GaussMarkov{gauss_markov.front().sigma, gauss_markov.front().tau_c_s};
+  if (sinusoid) t.sinusoid = Sinusoid{sinusoid->amplitude, sinusoid->frequency_hz, 0.0};
   return t;
 }
 
@@ -165,6 +167,11 @@ void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
     g.sigma *= unit;
     g.ci_low *= unit;
     g.ci_high *= unit;
+  }
+  if (fit->sinusoid) {
+    fit->sinusoid->amplitude *= unit;
+    fit->sinusoid->ci_low *= unit;
+    fit->sinusoid->ci_high *= unit;
   }
   for (Contradiction& c : fit->contradictions) {  // deviations, as the terms
     c.reported *= unit;

@@ -152,6 +152,21 @@ std::vector<Contradiction> check_against_curve(const ChannelFit& fit,
     }
     if (c.tau_s > 0) out.push_back(c);
   }
+  if (fit.sinusoid) {
+    NoiseTerms one;
+    one.sinusoid = Sinusoid{fit.sinusoid->amplitude, fit.sinusoid->frequency_hz, 0.0};
+    double worst = 1;
+    Contradiction c{Contradiction::Kind::term_above_curve, NoiseTerm::sinusoid, 0, 0, 0, 0};
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const double own = std::sqrt(sampled_avar(one, NoiseTerm::sinusoid, points[j].m, sampling));
+      const double high = interval(j).high;
+      if (own > worst * high) {
+        worst = own / high;
+        c = {Contradiction::Kind::term_above_curve, NoiseTerm::sinusoid, points[j].tau_s, own, points[j].dev, high};
+      }
+    }
+    if (c.tau_s > 0) out.push_back(c);
+  }
   return out;
 }
 

@@ -15,7 +15,7 @@ namespace sigmatau::detail {
 /// Number of linear fit terms (Q, N, B, K, R, in kFitTerms order).
 inline constexpr int kTermCount = 5;
 /// Squared parameters of a model: the kTermCount linear terms, then the squared sigma of each
-/// Gauss-Markov term the design holds (fit_gauss_markov.cpp).
+/// Gauss-Markov term the design holds (fit_added_terms.cpp).
 using TermVector = Eigen::VectorXd;
 
 /// Index of a term in kFitTerms (Error for Gauss-Markov and sinusoid).

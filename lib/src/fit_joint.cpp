@@ -94,7 +94,7 @@
 #include <mutex>
 #include <tuple>
 
-#include "fit_gauss_markov.hpp"
+#include "fit_added_terms.hpp"
 #include "fit_internal.hpp"
 #include "fit_select.hpp"
 #include "sigmatau/confidence.hpp"
@@ -125,7 +125,9 @@ constexpr std::size_t kDesignCacheSize = 16;
 
 Eigen::MatrixXd model_covariance(const CovarianceBasis& basis, const TermVector& theta,
                                  const Eigen::VectorXd& v) {
-  Eigen::MatrixXd sigma = basis.covariance(Eigen::VectorXd(theta));
+  // Columns beyond the basis's terms (a sinusoid, fit_added_terms.cpp) are deterministic: the
+  // scatter of their AVAR estimates is left to the model error.
+  Eigen::MatrixXd sigma = basis.covariance(Eigen::VectorXd(theta.head(basis.terms)));
   for (Eigen::Index j = 0; j < sigma.rows(); ++j) {
     sigma(j, j) = std::max(sigma(j, j), kSigmaFloor * kSigmaFloor * v(j) * v(j));
   }
@@ -303,17 +305,19 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
 
   Iterated final_fit = iterate(d, model, *basis);
   std::vector<double> gm_tau_c;
+  std::optional<double> sinusoid_hz;
   double model_error = 0;
-  // No model of the IEEE terms describes the curve: Gauss-Markov terms may (fit_gauss_markov.cpp).
+  // No model of the IEEE terms describes the curve: Gauss-Markov terms may (fit_added_terms.cpp).
   if (options.terms.empty() && options.gauss_markov &&
       gof_p_value(final_fit.fit.chi2, static_cast<int>(n) - count_positive(final_fit.fit.theta)) <
           kExtendBelowPValue) {
-    ExtendedModel ext = extend_with_gauss_markov(d, ms, source, model, mask_of(options.candidates), basis);
+    ExtendedModel ext = extend_with_added_terms(d, ms, source, model, mask_of(options.candidates), basis);
     d = std::move(ext.design);
     basis = std::move(ext.basis);
     model = ext.mask;
     final_fit = std::move(ext.fit);
     gm_tau_c = std::move(ext.tau_c_s);
+    sinusoid_hz = ext.sinusoid_hz;
     model_error = ext.kappa;
   }
   const Eigen::MatrixXd cov = theta_covariance(final_fit.fit);
@@ -329,7 +333,9 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   out.chi_squared = model_error > 0 ? own_chi2(d, final_fit.fit.theta, *basis) : final_fit.fit.chi2;
   out.model_error = model_error;
   // A Gauss-Markov term has two parameters: sigma and T_c.
-  const int parameters = count_positive(final_fit.fit.theta) + static_cast<int>(gm_tau_c.size());
+  // An added term has two parameters: its magnitude and its T_c or frequency.
+  const int parameters = count_positive(final_fit.fit.theta) + static_cast<int>(gm_tau_c.size()) +
+                         (sinusoid_hz ? 1 : 0);
   out.bic = out.chi_squared + parameters * std::log(static_cast<double>(n));
   out.dof = static_cast<int>(n) - parameters;
   out.p_value = gof_p_value(out.chi_squared, out.dof);
@@ -401,12 +407,32 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     }
     out.gauss_markov.push_back(e);
   }
+  if (sinusoid_hz) {
+    const auto k = kTermCount + static_cast<Eigen::Index>(gm_tau_c.size());
+    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
+    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
+    const double theta = final_fit.fit.theta(k), var = cov(c, c);
+    SinusoidEstimate e;
+    e.frequency_hz = *sinusoid_hz;
+    e.amplitude = std::sqrt(theta);
+    if (theta > 0 && var > 0) {
+      e.edf = 2 * theta * theta / var;
+      const Interval ci = chi_squared_interval(e.amplitude, e.edf, level);
+      e.ci_low = ci.low;
+      e.ci_high = ci.high;
+    }
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double own = d.a(j, k) * theta;
+      if (own > model_avar(j) - own) ++e.leading_points;
+    }
+    out.sinusoid = e;
+  }
   std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
             [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });
-  // Gauss-Markov terms standing in for flicker: the bias stability is the model's ADEV floor
+  // Added terms standing in for flicker: the bias stability is the model's ADEV floor
   // (its smallest ADEV over the fitted taus), as a data sheet reads it from a curve, with the
   // interval of the curve point there (its EDF).
-  if (!gm_tau_c.empty()) {
+  if (!gm_tau_c.empty() || sinusoid_hz) {
     auto& b = out.parameters[static_cast<std::size_t>(term_index(NoiseTerm::bias_instability))];
     if (!b.in_model) {
       Eigen::Index j_floor = 0;

@@ -51,7 +51,7 @@ inline constexpr std::array<NoiseTerm, 5> kFitTerms{
     NoiseTerm::quantization, NoiseTerm::white, NoiseTerm::bias_instability,
     NoiseTerm::rate_random_walk, NoiseTerm::rate_ramp};
 
-/// "Q", "N", "B", "K", "R", "GM" (Error for the sinusoid, which the fit does not model).
+/// "Q", "N", "B", "K", "R", and "GM", "SIN" for the terms the joint fit adds (fit_added_terms).
 std::string_view term_symbol(NoiseTerm term);
 /// Parses "N,B,K" (symbols Q N B K R, case-sensitive, any order, no repeats) for --terms.
 /// Throws Error naming the text and the bad item.
@@ -157,7 +157,7 @@ struct ParameterEstimate {
   double lowered_to_curve = 1;
 };
 
-/// One first-order Gauss-Markov term of a joint fit (fit_gauss_markov.cpp's search), SI.
+/// One first-order Gauss-Markov term of a joint fit (fit_added_terms.cpp's search), SI.
 struct GaussMarkovEstimate {
   double sigma = 0;    ///< stationary standard deviation [rad/s | m/s^2]
   double ci_low = 0;   ///< interval of sigma at the fit's level (T_c held at its estimate)
@@ -169,6 +169,16 @@ struct GaussMarkovEstimate {
   int leading_points = 0;
 };
 
+/// A sinusoid of a joint fit (fit_added_terms.cpp's search), SI.
+struct SinusoidEstimate {
+  double amplitude = 0;     ///< A [rad/s | m/s^2]
+  double ci_low = 0;        ///< interval of A at the fit's level (f held at its estimate)
+  double ci_high = 0;
+  double frequency_hz = 0;  ///< f [Hz] (searched on a grid and refined; no interval)
+  double edf = std::numeric_limits<double>::quiet_NaN();
+  int leading_points = 0;   ///< fitted taus where its AVAR exceeds the other terms' sum
+};
+
 /// The result of one method on one channel.
 struct ChannelFit {
   FitMethod method = FitMethod::joint;    ///< joint or slopes
@@ -177,6 +187,8 @@ struct ChannelFit {
   /// Joint fit only: the Gauss-Markov terms added because no model of the five IEEE terms
   /// described the curve (p below 1e-3), ascending T_c; empty otherwise.
   std::vector<GaussMarkovEstimate> gauss_markov;
+  /// Joint fit only: a sinusoid added for the same reason (a narrow bump: a vibration).
+  std::optional<SinusoidEstimate> sinusoid;
   /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
   /// weight loop. Slopes: NaN, NaN, 0.
   double chi_squared = 0;
