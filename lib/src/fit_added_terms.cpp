@@ -17,7 +17,7 @@
 //  1. With Sigma fixed at the current model's (widened) covariance, every T_c on a grid of
 //     kGridPerOctave per octave from kGridShortest tau0 to N tau0, and (while no sinusoid is in
 //     the model) every f on a grid of kFrequenciesPerOctave per octave whose ADEV peak lies
-//     within an octave of the fitted taus (and f <= 1 / (2 tau0)), is tried with the current IEEE terms (every candidate at the first
+//     from the second fitted octave to one octave beyond the last, is tried with the current IEEE terms (every candidate at the first
 //     addition; the NNLS sets unneeded ones to 0): the smallest chi2 wins. Then every subset of
 //     the IEEE candidates is tried with it (an added term may stand in for B or K): the
 //     smallest chi2 + (IEEE terms + 2 per added term) ln n + the priors wins. A subset that puts
@@ -220,12 +220,14 @@ ExtendedModel extend_with_added_terms(const Design& d, const std::vector<std::in
       }
     }
     if (!current.sinusoid_hz) {
-      // Frequencies whose ADEV peak (tau = kSinusoidPeak / f) lies within an octave of the
-      // fitted taus: beyond them the octave points cannot see a sinusoid, and at f = k / (m
-      // tau0) its AVAR is 0 at every octave m above: a column of zeros takes any amplitude.
+      // Frequencies whose ADEV peak (tau = kSinusoidPeak / f) lies from the second fitted
+      // octave to one octave beyond the last: a sinusoid peaking at the shortest tau raises that
+      // point alone (at the Nyquist frequency its AVAR is 0 at every even m), which no octave
+      // curve tells from a sensor's filter (left out instead: fit.cpp), and at f = k / (m tau0)
+      // its AVAR is 0 at every octave m above: a column of zeros takes any amplitude.
       const double step = std::exp2(1.0 / kFrequenciesPerOctave);
       const double tau_lo = static_cast<double>(ms.front()) * tau0, tau_hi = static_cast<double>(ms.back()) * tau0;
-      const double f_hi = std::min(0.5 / tau0, 2 * kSinusoidPeak / tau_lo);
+      const double f_hi = std::min(0.5 / tau0, kSinusoidPeak / (2 * tau_lo));
       for (double f = std::max(1 / span, kSinusoidPeak / (2 * tau_hi)); f <= f_hi; f *= step) {
         Added trial = current;
         trial.sinusoid_hz = f;
