@@ -277,6 +277,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
   for (std::size_t i = 0; i < fit.model_terms.size(); ++i) {
     out << (i ? "," : "") << term_symbol(fit.model_terms[i]);
   }
+  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
+    out << (fit.model_terms.empty() && g == 0 ? "" : ",") << "GM" << g + 1;
+  }
+  if (fit.sinusoid) out << (fit.model_terms.empty() && fit.gauss_markov.empty() ? "" : ",") << "SIN";
   out << "  (" << ci * 100 << "% intervals)\n";
   char line[200];
   std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13s  %s\n", "", "term", "ci_low", "value",

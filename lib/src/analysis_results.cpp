@@ -413,7 +413,8 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const std::size_t first_measured = measured.size();
       for (const auto& [term, quantity] : kMeasured) {
         const auto& p = reported.parameter(term);
-        if (p.in_model) {
+        // B read from the model's floor (added terms standing in for flicker) is measured too.
+        if (p.in_model || p.from_model_floor) {
           measured.push_back({sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
         } else {
           // Left out by the fit: still checked against the sheet, by its upper bound.
