@@ -37,6 +37,7 @@ struct FitArguments {
   double ci = 0.95;
   double tau_min_s = 0;
   double tau_max_s = std::numeric_limits<double>::infinity();
+  bool ieee_terms_only = false;
   std::string format = "table";
   std::string output;
   bool force = false;
@@ -510,6 +511,7 @@ void run_fit(const FitArguments& args) {
   check_tau_range(args.tau_min_s, args.tau_max_s);
   options.tau_min_s = args.tau_min_s;
   options.tau_max_s = args.tau_max_s;
+  options.added_terms = !args.ieee_terms_only;
   if (args.format != "table" && args.format != "json") {
     throw Error("--format must be table or json, got \"" + args.format + "\"");
   }
@@ -638,6 +640,10 @@ void add_fit_command(CLI::App& app) {
                       "fit only taus >= this [s] (a sensor that filters its output departs from "
                       "the noise terms at the shortest taus)");
   command->add_option("--tau-max", args->tau_max_s, "fit only taus <= this [s]");
+  command->add_flag("--ieee-terms-only", args->ieee_terms_only,
+                    "keep to Q, N, B, K, R even where they do not describe the curve (by default "
+                    "the joint fit then adds Gauss-Markov terms or a sinusoid, weights with a model "
+                    "error and leaves out the shortest taus a sensor's filter bends: docs/fit.md)");
   command->add_option("--format", args->format, "table | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");

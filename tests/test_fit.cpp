@@ -385,7 +385,7 @@ TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min
   for (std::size_t j = 0; j < 3; ++j) filtered.points[j].value.dev *= 0.8;
   // The IEEE terms alone (no added terms, no taus left out: fit_added_terms.cpp, fit.cpp).
   FitOptions ieee_only;
-  ieee_only.gauss_markov = false;
+  ieee_only.added_terms = false;
   const NoiseFit bad = fit_noise(filtered, source, ieee_only);
   REQUIRE(bad.joint);
   CHECK(bad.joint->p_value < kMisfitPValue);

@@ -357,6 +357,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
     fit_options.confidence_level = options.confidence;
     fit_options.tau_min_s = options.fit_tau_min_s;
     fit_options.tau_max_s = options.fit_tau_max_s;
+    fit_options.added_terms = options.fit_added_terms;
     CurveSource source;
     source.tau0_s = 1.0 / rate_hz;
     // Split: the segments' samples counted as one record (the fit's OAVAR covariance assumes

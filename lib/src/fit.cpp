@@ -260,7 +260,7 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
   std::vector<detail::AvarPoint> joint_points = points;
   if (options.method != FitMethod::slopes) {
     fit.joint = detail::fit_joint(points, source, options);
-    if (options.terms.empty() && options.gauss_markov) {
+    if (options.terms.empty() && options.added_terms) {
       joint_points = leave_out_filtered_taus(*fit.joint, points, source, options);
     }
   }

@@ -308,7 +308,7 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   std::optional<double> sinusoid_hz;
   double model_error = 0;
   // No model of the IEEE terms describes the curve: Gauss-Markov terms may (fit_added_terms.cpp).
-  if (options.terms.empty() && options.gauss_markov &&
+  if (options.terms.empty() && options.added_terms &&
       gof_p_value(final_fit.fit.chi2, static_cast<int>(n) - count_positive(final_fit.fit.theta)) <
           kExtendBelowPValue) {
     ExtendedModel ext = extend_with_added_terms(d, ms, source, model, mask_of(options.candidates), basis);

@@ -13,6 +13,12 @@ if(EXISTS ${fit_guards_log})
     STDOUT "gyro_x  joint  model N,B,GM1,SIN .*GM1 Gauss-Markov sigma .*T_c = .*goodness of fit: chi-squared [0-9.]+ for 10 degrees of freedom, p = 0.1"
     STDERR "the joint fit leaves out the shortest taus \\(0.01, 0.02 s\\)"
     ARGS fit ${fit_guards_log} --rate 100 --gyro-unit deg/s --accel-unit g --columns gyro_x)
+  # --ieee-terms-only: the five IEEE terms alone, rejected and contradicted as before, so the
+  # curve's read-outs are reported and said so.
+  sigmatau_cli_test(NAME cli_fit_guards_adis16405_ieee_only EXIT 0
+    STDOUT "contradicted by the curve: the flicker floor 0.664 B = 126.5 deg/h lies above the curve's minimum 18.77 deg/h"
+    STDERR "Reported instead \\(values, verdicts, filter files\\): the curve's own read-outs"
+    ARGS fit ${fit_guards_log} --rate 100 --gyro-unit deg/s --accel-unit g --columns gyro_x --ieee-terms-only)
   # analyze --spec on the same log (tests/cli/compliance_chart.cmake writes it): the ADIS16448
   # sheet's 14.5 deg/h bias stability is compared with the fit's floor 0.664 B = 17.46 deg/h
   # (the curve's minimum: 18.77), 1.20x, not the IEEE fit's 8.7x.

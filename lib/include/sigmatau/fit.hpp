@@ -84,9 +84,11 @@ struct FitOptions {
   /// sensor that filters its output departs from every noise term at the shortest taus.
   double tau_min_s = 0;
   double tau_max_s = std::numeric_limits<double>::infinity();
-  /// Whether the joint fit may add Gauss-Markov terms (at most 3) when no model of the
-  /// candidates describes the curve (p < 1e-3; --no-gauss-markov turns it off).
-  bool gauss_markov = true;
+  /// When no model of the candidates describes the curve (p < 1e-3), whether the joint fit
+  /// may add the terms real sensors add (up to three Gauss-Markov terms and a sinusoid), weight
+  /// with a relative model error and leave out the shortest taus a sensor's filter bends
+  /// (docs/fit.md, "Real sensors"). --ieee-terms-only turns it off.
+  bool added_terms = true;
 };
 
 /// Family-wise two-sided level of the curve points' intervals the consistency guards use,
