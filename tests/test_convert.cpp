@@ -144,7 +144,7 @@ TEST_CASE("Gauss-Markov from a bias stability peaks at B_ds at tau_min (THEORY.m
   // Independent check with the continuous GM Allan variance of noise_model.hpp: its ADEV at
   // tau_min equals B_ds to the 4 digits of 0.6174 and 1.892 (rtol 1e-3).
   NoiseTerms gm;
-  gm.gauss_markov = GaussMarkov{r.bias->sigma(0), r.bias->tau_c_s(0)};
+  gm.gauss_markov = {GaussMarkov{r.bias->sigma(0), r.bias->tau_c_s(0)}};
   SIGMATAU_CHECK_REL(std::sqrt(continuous_avar(gm, 400.0)), b_ds, 1e-3);
   // ... and it is the peak: 10% either side is lower.
   CHECK(continuous_avar(gm, 360.0) < continuous_avar(gm, 400.0));

@@ -108,7 +108,7 @@ TEST_CASE("sampled white, quantization, random walk and ramp follow Zhang's exac
 
 TEST_CASE("Gauss-Markov: continuous form reproduces THEORY.md T12 and its hump") {
   NoiseTerms t;
-  t.gauss_markov = GaussMarkov{1.0, 10.0};
+  t.gauss_markov = {GaussMarkov{1.0, 10.0}};
   // T12 is printed to 6 digits: 2e-6 relative.
   CHECK(continuous_avar(t, NoiseTerm::gauss_markov, 1.0) == rel(0.0618919, 2e-6));
   CHECK(continuous_avar(t, NoiseTerm::gauss_markov, 10.0) == rel(0.336182, 2e-6));
@@ -134,7 +134,7 @@ TEST_CASE("Gauss-Markov: sampled AR(1) form against a long-double ACF sum and it
   for (double a : {1e-3, 1e-2, 0.3, 2.0}) {
     for (std::int64_t n : {1, 2, 7, 40, 300}) {
       NoiseTerms t;
-      t.gauss_markov = GaussMarkov{1.5, 1.0 / a};
+      t.gauss_markov = {GaussMarkov{1.5, 1.0 / a}};
       const long double phi = std::exp(-static_cast<long double>(a));
       long double acc = n * (1 - std::pow(phi, static_cast<long double>(n)));
       for (std::int64_t i = 1; i < n; ++i)
@@ -151,14 +151,14 @@ TEST_CASE("Gauss-Markov: sampled AR(1) form against a long-double ACF sum and it
   // the point-sampling term (relative ~1/(2 n^2) in the random-walk regime) plus O(tau0/T_c)
   // in the hump: 2e-3 bounds both.
   NoiseTerms t;
-  t.gauss_markov = GaussMarkov{1.0, 10.0};
+  t.gauss_markov = {GaussMarkov{1.0, 10.0}};
   for (std::int64_t n : {100, 1000, 10000, 100000})
     SIGMATAU_CHECK_REL(sampled_avar(t, NoiseTerm::gauss_markov, n, Sampling{0.01, 0, false}),
                        continuous_avar(t, NoiseTerm::gauss_markov, static_cast<double>(n) * 0.01), 2e-3);
   // tau0/T_c = 1e-8 (the cancellation-prone case) stays on the random-walk line
   // q (2n^2+1)/(6n), q = sigma^2 (1 - phi^2): relative deviation O(n tau0/T_c) <= 1e-5.
   NoiseTerms slow;
-  slow.gauss_markov = GaussMarkov{1.0, 1e8};
+  slow.gauss_markov = {GaussMarkov{1.0, 1e8}};
   for (std::int64_t n : {1, 10, 1000}) {
     const double q = -std::expm1(-2e-8);
     SIGMATAU_CHECK_REL(sampled_avar(slow, NoiseTerm::gauss_markov, n, Sampling{1.0, 0, false}),
@@ -193,7 +193,7 @@ TEST_CASE("continuous AVAR of each term equals the IEEE 4-integral of its two-si
   t.white = 3e-3;
   t.bias_instability = 2e-4;
   t.rate_random_walk = 5e-5;
-  t.gauss_markov = GaussMarkov{1e-3, 20.0};
+  t.gauss_markov = {GaussMarkov{1e-3, 20.0}};
   for (NoiseTerm term : {NoiseTerm::white, NoiseTerm::bias_instability,
                          NoiseTerm::rate_random_walk, NoiseTerm::gauss_markov}) {
     for (double tau : {0.1, 3.0, 100.0}) {
@@ -272,6 +272,6 @@ TEST_CASE("error model: (I + T) x + b + c (T - T0) and validation") {
   bad.noise[2].white = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH_AS(bad.validate("gyro"), doctest::Contains("gyro.z"), Error);
   bad = m;
-  bad.noise[0].gauss_markov = GaussMarkov{1.0, 0.0};
+  bad.noise[0].gauss_markov = {GaussMarkov{1.0, 0.0}};
   CHECK_THROWS_AS(bad.validate("accel"), Error);
 }

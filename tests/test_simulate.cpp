@@ -181,7 +181,7 @@ TEST_CASE("each random term alone matches its exact sampled AVAR at every octave
   SUBCASE("quantization") { t.quantization = 1e-6; }
   SUBCASE("flicker") { t.bias_instability = 2e-5; }
   SUBCASE("rate random walk") { t.rate_random_walk = 1e-5; }
-  SUBCASE("Gauss-Markov, hump inside the taus") { t.gauss_markov = GaussMarkov{1e-4, 5.0}; }
+  SUBCASE("Gauss-Markov, hump inside the taus") { t.gauss_markov = {GaussMarkov{1e-4, 5.0}}; }
   check_matches_theory(t);
 }
 
@@ -191,7 +191,7 @@ TEST_CASE("the sum of every term matches the sum of the exact AVARs") {
   t.quantization = 2e-6;
   t.bias_instability = 3e-5;
   t.rate_random_walk = 2e-5;
-  t.gauss_markov = GaussMarkov{5e-5, 2.0};
+  t.gauss_markov = {GaussMarkov{5e-5, 2.0}};
   t.rate_ramp = 1e-7;
   t.sinusoid = Sinusoid{2e-5, 1.3, 0.4};
   check_matches_theory(t);
@@ -300,7 +300,7 @@ TEST_CASE("samples do not depend on the block size or the thread count") {
   t.quantization = 2e-6;
   t.bias_instability = 3e-5;
   t.rate_random_walk = 2e-5;
-  t.gauss_markov = GaussMarkov{5e-5, 2.0};
+  t.gauss_markov = {GaussMarkov{5e-5, 2.0}};
   t.rate_ramp = 1e-7;
   t.sinusoid = Sinusoid{2e-5, 1.3, 0.4};
   SimulationConfig c = gyro_config(t, 42);

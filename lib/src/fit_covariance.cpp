@@ -183,7 +183,8 @@ namespace sigmatau {
 Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::int64_t> m,
                                  std::int64_t n_phase_points, double tau0_s) {
   std::optional<double> tau_c;
-  if (terms.gauss_markov) tau_c = terms.gauss_markov->tau_c_s;
+  // lead: multi-GM basis pending
+  if (!terms.gauss_markov.empty()) tau_c = terms.gauss_markov.front().tau_c_s;
   const auto basis = detail::build_covariance_basis(std::vector<std::int64_t>(m.begin(), m.end()),
                                                     n_phase_points, tau0_s, tau_c);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(basis.terms);
@@ -193,7 +194,8 @@ Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::i
   theta(2) = sq(terms.bias_instability);
   theta(3) = sq(terms.rate_random_walk);
   theta(4) = sq(terms.rate_ramp);
-  if (tau_c) theta(detail::kTermCount) = terms.gauss_markov->sigma * terms.gauss_markov->sigma;
+  if (tau_c)  // lead: multi-GM basis pending (first entry only)
+    theta(detail::kTermCount) = terms.gauss_markov.front().sigma * terms.gauss_markov.front().sigma;
   return basis.covariance(theta);
 }
 
