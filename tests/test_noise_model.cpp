@@ -275,3 +275,41 @@ TEST_CASE("error model: (I + T) x + b + c (T - T0) and validation") {
   bad.noise[0].gauss_markov = {GaussMarkov{1.0, 0.0}};
   CHECK_THROWS_AS(bad.validate("accel"), Error);
 }
+
+TEST_CASE("a sum of Gauss-Markov processes: AVARs and PSDs are the sums of the entries'") {
+  // Independent processes: the variance of a sum is the sum of the variances, so every
+  // second-moment quantity adds. The sums here are of 2-3 positive doubles: 1e-15 relative.
+  const GaussMarkov a{1e-4, 0.5}, b{3e-5, 40.0}, c{2e-6, 3000.0};
+  NoiseTerms sum;
+  sum.white = 1e-4;
+  sum.gauss_markov = {a, b, c};
+  const Sampling s{0.01, 0, false};
+  CHECK(has_term(sum, NoiseTerm::gauss_markov));
+  CHECK_FALSE(has_term(NoiseTerms{}, NoiseTerm::gauss_markov));
+  CHECK(only(sum, NoiseTerm::gauss_markov).gauss_markov == sum.gauss_markov);
+  CHECK_FALSE(only(sum, NoiseTerm::gauss_markov).white.has_value());
+  CHECK(only_gauss_markov(sum, 1).gauss_markov == std::vector<GaussMarkov>{b});
+  CHECK_THROWS_AS(only_gauss_markov(sum, 3), Error);
+  NoiseTerms gm_only;
+  gm_only.gauss_markov = {a};
+  CHECK_FALSE(gm_only.empty());
+  for (std::int64_t m : {1, 16, 1024, 65536}) {
+    double each = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each += sampled_avar(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, m, s);
+    SIGMATAU_CHECK_REL(sampled_avar(sum, NoiseTerm::gauss_markov, m, s), each, 1e-15);
+    SIGMATAU_CHECK_REL(sampled_avar(sum, m, s),
+                       each + sampled_avar(sum, NoiseTerm::white, m, s), 1e-15);
+    const double tau = static_cast<double>(m) * 0.01;
+    double each_c = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each_c += continuous_avar(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, tau);
+    SIGMATAU_CHECK_REL(continuous_avar(sum, NoiseTerm::gauss_markov, tau), each_c, 1e-15);
+  }
+  for (double f : {1e-4, 0.01, 1.0, 40.0}) {
+    double each = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each += two_sided_psd(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, f, 0.01);
+    SIGMATAU_CHECK_REL(two_sided_psd(sum, NoiseTerm::gauss_markov, f, 0.01), each, 1e-15);
+  }
+}
