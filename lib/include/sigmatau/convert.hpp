@@ -84,7 +84,9 @@ inline constexpr double kDefaultReferenceTime = 100.0;
 struct TriadNoise {
   Sensor sensor = Sensor::gyro;
   /// Per axis x, y, z. Used: white (N), bias_instability (B, flicker), rate_random_walk (K),
-  /// gauss_markov. Other terms are ignored by the conversion (and named in the explanation).
+  /// gauss_markov (a sum of entries: --bias-model gm carries the entry with the largest sigma,
+  /// rw takes K^2 = sum 2 sigma_i^2/T_c_i; TriadDiscrete::gauss_markov_note). Other terms are
+  /// ignored by the conversion (and named in the explanation).
   std::array<NoiseTerms, 3> axes;
   /// Correlation between the axes' white noises (unit diagonal); identity when not given.
   Eigen::Matrix3d white_correlation = Eigen::Matrix3d::Identity();
