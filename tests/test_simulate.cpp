@@ -481,6 +481,7 @@ TEST_CASE("write_simulation: csv with header, sidecar with truth and theory, ato
   c.samples = 1000;
   ErrorModel a;
   a.noise[0].white = 2e-3;
+  a.noise[1].gauss_markov = {GaussMarkov{1e-3, 0.5}, GaussMarkov{2e-4, 30.0}};
   c.accel = a;
   const auto path = dir / "log.csv";
   write_simulation(c, path, SampleFormat::csv, false);
@@ -498,6 +499,12 @@ TEST_CASE("write_simulation: csv with header, sidecar with truth and theory, ato
   const auto avar = j["theory"]["avar"]["gx"].get<std::vector<double>>();
   REQUIRE(avar.size() == octave_factors(1000).size());
   CHECK(avar[3] == sampled_avar(t, 8, sampling_of(c)));
+  // A Gauss-Markov sum: a list of {sigma, tau_c_s} in the order given, theory of the sum.
+  const auto& gms = j["accel"]["noise"][1]["gauss_markov"];
+  REQUIRE(gms.size() == 2);
+  CHECK(gms[1]["sigma"] == 2e-4);
+  CHECK(gms[1]["tau_c_s"] == 30.0);
+  CHECK(j["theory"]["avar"]["ay"][3].get<double>() == sampled_avar(a.noise[1], 8, sampling_of(c)));
   CHECK_THROWS_WITH_AS(write_simulation(c, path, SampleFormat::csv, false),
                        doctest::Contains("--force"), Error);
   // Binary: rows x channels little-endian f32, overwrite allowed.
