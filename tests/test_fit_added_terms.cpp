@@ -44,7 +44,7 @@ TEST_CASE("a Gauss-Markov bump no IEEE model describes is found at its correlati
   // (N^2 / tau = 1e-8 / 19 against the GM's ~0.34 sigma^2 = 3.4e-9 at its peak).
   NoiseTerms truth;
   truth.white = 1e-4;
-  truth.gauss_markov = GaussMarkov{1e-4, 10.0};
+  truth.gauss_markov = {GaussMarkov{1e-4, 10.0}};
   const AllanCurve curve = test::exact_oadev_curve(truth, kSamples, kTau0);
   const NoiseFit fit = fit_curve(curve);
   REQUIRE(fit.joint);

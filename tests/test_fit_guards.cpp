@@ -95,7 +95,7 @@ std::string contradictions_of(const ChannelFit& fit, const AllanCurve& curve,
   std::vector<NoiseTerms> added;
   for (const auto& g : fit.gauss_markov) {
     NoiseTerms one;
-    one.gauss_markov = GaussMarkov{g.sigma, g.tau_c_s};
+    one.gauss_markov = {GaussMarkov{g.sigma, g.tau_c_s}};
     added.push_back(one);
   }
   if (fit.sinusoid) {

@@ -116,6 +116,8 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   }
   json readouts = json::array();
   for (NoiseTerm term : fit.model_terms) {
+    // Gauss-Markov and sinusoid have no IEEE line (read_off): drawn as curves below.
+    if (term == NoiseTerm::gauss_markov || term == NoiseTerm::sinusoid) continue;
     const auto& p = fit.parameter(term);
     std::vector<double> line;
     for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
@@ -128,12 +130,13 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
                           {"adev", adev_line(term, p.value, tau_read)}});
     }
   }
-  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
-    NoiseTerms one;
-    one.gauss_markov = GaussMarkov{fit.gauss_markov[g].sigma, fit.gauss_markov[g].tau_c_s};
-    std::vector<double> line;
-    for (double tau : taus) line.push_back(std::sqrt(continuous_avar(one, NoiseTerm::gauss_markov, tau)));
-    per_term["GM" + std::to_string(g + 1)] = line;
+  // One curve per Gauss-Markov entry ("GM1", "GM2", ...): its exact continuous ADEV, a bump
+  // with no straight-line asymptote to draw.
+  for (std::size_t i = 0; i < terms.gauss_markov.size(); ++i) {
+    const NoiseTerms one = only_gauss_markov(terms, i);
+    std::vector<double> curve;
+    for (double tau : taus) curve.push_back(std::sqrt(continuous_avar(one, tau)));
+    per_term["GM" + std::to_string(i + 1)] = curve;
   }
   json sinusoid = nullptr;
   if (fit.sinusoid) {

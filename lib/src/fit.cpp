@@ -95,8 +95,7 @@ NoiseTerms ChannelFit::noise_terms() const {
       default: break;
     }
   }
-  // lead: one GM in the vocabulary until the GM-sum vocabulary lands.
-  if (!gauss_markov.empty()) t.gauss_markov = GaussMarkov{gauss_markov.front().sigma, gauss_markov.front().tau_c_s};
+  for (const auto& g : gauss_markov) t.gauss_markov.push_back(GaussMarkov{g.sigma, g.tau_c_s});
   if (sinusoid) t.sinusoid = Sinusoid{sinusoid->amplitude, sinusoid->frequency_hz, 0.0};
   return t;
 }
@@ -311,8 +310,7 @@ const ChannelFit& NoiseFit::reported() const {
 std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& curve,
                                     const CurveSource& source, const FitOptions& options) {
   const Sampling sampling{source.tau0_s, source.flicker_taps, false};
-  NoiseTerms ieee = fit.noise_terms();  // the Gauss-Markov terms are added one by one below
-  ieee.gauss_markov.reset();
+  const NoiseTerms model = fit.noise_terms();  // added terms included
   std::vector<double> out;
   out.reserve(curve.points.size());
   for (const auto& p : curve.points) {
@@ -327,13 +325,7 @@ std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& cur
       out.push_back(std::numeric_limits<double>::quiet_NaN());
       continue;
     }
-    double avar = sampled_avar(ieee, p.value.m, sampling);
-    for (const auto& g : fit.gauss_markov) {
-      NoiseTerms one;
-      one.gauss_markov = GaussMarkov{g.sigma, g.tau_c_s};
-      avar += sampled_avar(one, NoiseTerm::gauss_markov, p.value.m, sampling);
-    }
-    out.push_back(std::sqrt(avar));
+    out.push_back(std::sqrt(sampled_avar(model, p.value.m, sampling)));
   }
   return out;
 }

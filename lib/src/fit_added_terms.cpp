@@ -166,7 +166,7 @@ struct Addition {
 
 Eigen::VectorXd gauss_markov_column(const std::vector<std::int64_t>& m, double tau0_s, double tau_c_s) {
   NoiseTerms unit;
-  unit.gauss_markov = GaussMarkov{1.0, tau_c_s};
+  unit.gauss_markov = {GaussMarkov{1.0, tau_c_s}};
   const Sampling sampling{tau0_s, 0, false};
   Eigen::VectorXd col(static_cast<Eigen::Index>(m.size()));
   for (std::size_t j = 0; j < m.size(); ++j) {

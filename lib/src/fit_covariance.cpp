@@ -209,7 +209,7 @@ namespace sigmatau {
 Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::int64_t> m,
                                  std::int64_t n_phase_points, double tau0_s) {
   std::vector<double> tau_c;
-  if (terms.gauss_markov) tau_c.push_back(terms.gauss_markov->tau_c_s);
+  for (const auto& g : terms.gauss_markov) tau_c.push_back(g.tau_c_s);
   const auto basis = detail::build_covariance_basis(std::vector<std::int64_t>(m.begin(), m.end()),
                                                     n_phase_points, tau0_s, tau_c);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(basis.terms);
@@ -219,7 +219,9 @@ Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::i
   theta(2) = sq(terms.bias_instability);
   theta(3) = sq(terms.rate_random_walk);
   theta(4) = sq(terms.rate_ramp);
-  if (!tau_c.empty()) theta(detail::kTermCount) = terms.gauss_markov->sigma * terms.gauss_markov->sigma;
+  for (std::size_t g = 0; g < tau_c.size(); ++g) {
+    theta(detail::kTermCount + static_cast<Eigen::Index>(g)) = terms.gauss_markov[g].sigma * terms.gauss_markov[g].sigma;
+  }
   return basis.covariance(theta);
 }
 

@@ -36,17 +36,13 @@ namespace {
 /// The AVAR of one Gauss-Markov term of a fit at m.
 double gauss_markov_avar(const GaussMarkovEstimate& e, std::int64_t m, const Sampling& sampling) {
   NoiseTerms one;
-  one.gauss_markov = GaussMarkov{e.sigma, e.tau_c_s};
+  one.gauss_markov = {GaussMarkov{e.sigma, e.tau_c_s}};
   return sampled_avar(one, NoiseTerm::gauss_markov, m, sampling);
 }
 
-/// The whole model's AVAR at m: its IEEE terms and every Gauss-Markov term.
+/// The whole model's AVAR at m: its IEEE terms and every added term.
 double model_avar(const ChannelFit& fit, std::int64_t m, const Sampling& sampling) {
-  NoiseTerms ieee = fit.noise_terms();
-  ieee.gauss_markov.reset();
-  double sum = sampled_avar(ieee, m, sampling);
-  for (const auto& e : fit.gauss_markov) sum += gauss_markov_avar(e, m, sampling);
-  return sum;
+  return sampled_avar(fit.noise_terms(), m, sampling);
 }
 
 /// The EDF of each point's AVAR estimate under `fit`'s model: 2 A_j^2 / Var(s2_j), the variance
