@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <cstdio>
 #include <fstream>
@@ -120,18 +121,19 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
   nlohmann::json params = nlohmann::json::object();
   for (const auto& p : fit.parameters) {
     nlohmann::json j;
-    if (p.in_model) {
+    if (p.from_model_floor) {
+      // Added terms: B read from the model's ADEV floor (the flicker coefficient beside it).
+      j["value"] = p.value;
+      j["ci_low"] = p.ci_low;
+      j["ci_high"] = p.ci_high;
+      j["from_model_floor"] = true;
+      if (std::isfinite(p.flicker)) j["flicker"] = p.flicker;
+    } else if (p.in_model) {
       j["value"] = p.value;
       j["ci_low"] = p.ci_low;
       j["ci_high"] = p.ci_high;
       j["leading_points"] = p.leading_points;
       if (p.lowered_to_curve < 1) j["lowered_to_curve"] = p.lowered_to_curve;
-    } else if (p.from_model_floor) {
-      // Gauss-Markov terms stand in for flicker: B read from the model's ADEV floor.
-      j["value"] = p.value;
-      j["ci_low"] = p.ci_low;
-      j["ci_high"] = p.ci_high;
-      j["from_model_floor"] = true;
     } else {
       j["upper_bound"] = p.upper_bound;
     }
@@ -296,7 +298,12 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     if (p.in_model || p.from_model_floor) {
       std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s%s", sym.c_str(), nm.c_str(),
                     p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str(),
-                    p.from_model_floor ? " (not a flicker term: the model's ADEV floor / 0.664)" : "");
+                    p.from_model_floor ? " (the model's ADEV floor / 0.664, added terms included)" : "");
+    if (p.from_model_floor && std::isfinite(p.flicker)) {
+      char flicker[80];
+      std::snprintf(flicker, sizeof flicker, "; flicker term alone B = %.5g %s", p.flicker * f, sheet.c_str());
+      std::strncat(line, flicker, sizeof line - std::strlen(line) - 1);
+    }
     } else {
       std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
                     sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, sheet.c_str());

@@ -179,7 +179,7 @@ TEST_CASE("the ADIS16405 gyro_x: a model with added terms describes the curve, i
   CHECK_FALSE(fit.joint->left_out_taus_s.empty());
   CHECK((!fit.joint->gauss_markov.empty() || fit.joint->sinusoid.has_value()));
   // The reported bias stability 0.664 B lies inside the 95 % interval of the curve's minimum
-  // (18.8 deg/h at 1311 s, EDF ~ 2: the interval spans about 0.5x-4x; the fit gives 17.5).
+  // (18.8 deg/h at 1311 s, EDF ~ 2: the interval spans about 0.5x-4x; the fit gives 17.9).
   const auto& b = fit.reported().parameter(NoiseTerm::bias_instability);
   REQUIRE((b.in_model || b.from_model_floor));
   double edf_min = 0;

@@ -77,7 +77,16 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   for (const auto& p : fit.parameters) {
     const std::string key(term_symbol(p.term));
     json entry = {{"unit", std::string(si_unit(p.term, sensor))}};
-    if (p.in_model) {
+    if (p.from_model_floor) {
+      // Added terms: B read from the model's ADEV floor (the flicker coefficient beside it).
+      entry["value"] = p.value;
+      entry["ci_low"] = p.ci_low;
+      entry["ci_high"] = p.ci_high;
+      entry["from_model_floor"] = true;
+      if (std::isfinite(p.flicker)) entry["flicker"] = p.flicker;
+      if (std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+      if (std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
+    } else if (p.in_model) {
       entry["value"] = p.value;
       entry["ci_low"] = p.ci_low;
       entry["ci_high"] = p.ci_high;
@@ -85,14 +94,6 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
       if (p.lowered_to_curve < 1) entry["lowered_to_curve"] = p.lowered_to_curve;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
       if (p.term == NoiseTerm::bias_instability && std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
-    } else if (p.from_model_floor) {
-      // Gauss-Markov terms stand in for flicker: B read from the model's ADEV floor.
-      entry["value"] = p.value;
-      entry["ci_low"] = p.ci_low;
-      entry["ci_high"] = p.ci_high;
-      entry["from_model_floor"] = true;
-      if (std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
-      if (std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
     } else {
       entry["upper_bound"] = p.upper_bound;
     }
@@ -120,14 +121,17 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
     if (term == NoiseTerm::gauss_markov || term == NoiseTerm::sinusoid) continue;
     const auto& p = fit.parameter(term);
     std::vector<double> line;
-    for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
+    // B's line is the flicker term's own (its floor 0.664 B): the flicker coefficient when the
+    // reported value is the model's floor.
+    const double value = p.from_model_floor ? p.flicker : p.value;
+    for (double tau : taus) line.push_back(adev_line(term, value, tau));
     per_term[std::string(term_symbol(term))] = line;
     const ReadOff r = read_off(term);
     double tau_read = r.tau_read_s;
     if (term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s) && p.tau_min_s > 0) tau_read = p.tau_min_s;
     if (tau_read >= tau_lo && tau_read <= tau_hi) {
       readouts.push_back({{"term", std::string(term_symbol(term))}, {"tau", tau_read},
-                          {"adev", adev_line(term, p.value, tau_read)}});
+                          {"adev", adev_line(term, value, tau_read)}});
     }
   }
   // One curve per Gauss-Markov entry ("GM1", "GM2", ...): its exact continuous ADEV, a bump

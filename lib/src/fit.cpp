@@ -89,7 +89,9 @@ NoiseTerms ChannelFit::noise_terms() const {
     switch (p.term) {
       case NoiseTerm::quantization: t.quantization = p.value; break;
       case NoiseTerm::white: t.white = p.value; break;
-      case NoiseTerm::bias_instability: t.bias_instability = p.value; break;
+      case NoiseTerm::bias_instability:
+        t.bias_instability = p.from_model_floor ? p.flicker : p.value;
+        break;
       case NoiseTerm::rate_random_walk: t.rate_random_walk = p.value; break;
       case NoiseTerm::rate_ramp: t.rate_ramp = p.value; break;
       default: break;
@@ -161,6 +163,7 @@ void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
     p.ci_high *= unit;
     p.upper_bound *= unit;
     p.adev_min *= unit;
+    p.flicker *= unit;
   }
   for (GaussMarkovEstimate& g : fit->gauss_markov) {
     g.sigma *= unit;

@@ -59,8 +59,14 @@ std::vector<double> model_edf(const ChannelFit& fit, const std::vector<AvarPoint
   for (const auto& q : points) m.push_back(q.m);
   const auto gms = static_cast<Eigen::Index>(fit.gauss_markov.size());
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(kTermCount + gms);
-  for (const auto& p : fit.parameters) {
-    if (p.in_model) theta(term_index(p.term)) = p.value * p.value;
+  {
+    const NoiseTerms t = fit.noise_terms();
+    const auto sq = [](const std::optional<double>& v) { return v ? *v * *v : 0.0; };
+    theta(0) = sq(t.quantization);
+    theta(1) = sq(t.white);
+    theta(2) = sq(t.bias_instability);
+    theta(3) = sq(t.rate_random_walk);
+    theta(4) = sq(t.rate_ramp);
   }
   std::vector<double> tau_c;
   for (Eigen::Index g = 0; g < gms; ++g) {

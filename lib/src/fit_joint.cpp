@@ -429,12 +429,15 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   }
   std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
             [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });
-  // Added terms standing in for flicker: the bias stability is the model's ADEV floor
-  // (its smallest ADEV over the fitted taus), as a data sheet reads it from a curve, with the
-  // interval of the curve point there (its EDF).
+  // With added terms the flicker term alone is no longer the floor (a Gauss-Markov sum may
+  // stand in for it, or share it): the bias stability is the model's ADEV floor (its smallest
+  // ADEV over the fitted taus) / 0.664, as a data sheet reads it from a curve, with the
+  // interval of the curve point there (its EDF); a kept flicker keeps its coefficient in
+  // `flicker`.
   if (!gm_tau_c.empty() || sinusoid_hz) {
     auto& b = out.parameters[static_cast<std::size_t>(term_index(NoiseTerm::bias_instability))];
-    if (!b.in_model) {
+    {
+      if (b.in_model) b.flicker = b.value;
       Eigen::Index j_floor = 0;
       for (Eigen::Index j = 1; j < n; ++j) {
         if (model_avar(j) < model_avar(j_floor)) j_floor = j;

@@ -149,10 +149,15 @@ struct ParameterEstimate {
   /// Slopes: points on its slope line (B: 1, the minimum). 0 for a term not in the model
   /// (rise_without_floor reads B's).
   int leading_points = 0;
-  /// B only, joint fit with Gauss-Markov terms and no flicker: true when B is not in the model
-  /// but read from the model's ADEV floor (its smallest ADEV over the fitted taus / 0.664, the
-  /// bias stability a data sheet quotes), value and interval set, in_model false.
+  /// B only, joint fit with added terms (Gauss-Markov, sinusoid): the bias stability is read
+  /// from the model's ADEV floor (its smallest ADEV over the fitted taus / 0.664, what a data
+  /// sheet quotes), so value and interval hold that reading, the flicker term alone no longer
+  /// being the floor; in_model says whether a flicker term is in the model too, with its own
+  /// coefficient in `flicker`.
   bool from_model_floor = false;
+  /// B only, from_model_floor with a flicker term in the model: its coefficient [rate unit]
+  /// (the model's B); NaN otherwise.
+  double flicker = std::numeric_limits<double>::quiet_NaN();
   /// Curve read-outs only (NoiseFit::readings): the factor (<= 1) by which the read-out was
   /// lowered so that the term alone stays within the curve at every fitted tau (the -1/2 line
   /// fitted through a filtered or bending curve crosses it); 1 when it was not.
