@@ -54,7 +54,7 @@ std::vector<LagSums> all_sums(const std::vector<std::int64_t>& m, std::int64_t n
   for (std::size_t b = 0; b < m.size(); ++b) {
     for (std::size_t a = 0; a <= b; ++a) {
       out.push_back(old_path ? covariance_lag_sums_fft(m[a], m[b], n_phase, tau0, gm, lag_factor)
-                             : covariance_lag_sums(PairCorrelation(m[a], m[b], tau0, gm), n_phase));
+                             : covariance_lag_sums(PairCorrelation(m[a], m[b], tau0, gm ? std::vector<double>{*gm} : std::vector<double>{}), n_phase));
     }
   }
   return out;
@@ -140,7 +140,7 @@ int basis_only(std::int64_t samples, bool old_path) {
   if (old_path) {
     for (const auto& s : all_sums(m, samples + 1, tau0, std::nullopt, true)) checksum += s.cc(1, 1);
   } else {
-    const CovarianceBasis basis = build_covariance_basis(m, samples + 1, tau0, std::nullopt);
+    const CovarianceBasis basis = build_covariance_basis(m, samples + 1, tau0, {});
     for (const auto& h : basis.h) checksum += h(1, 1);
   }
   const double s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     std::vector<double> t_new, t_old;
     for (int r = 0; r < runs; ++r) {
       const auto t0 = Clock::now();
-      const CovarianceBasis basis = build_covariance_basis(m, samples + 1, tau0, std::nullopt);
+      const CovarianceBasis basis = build_covariance_basis(m, samples + 1, tau0, {});
       t_new.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     }
     const double rss_new = peak_rss_mib();
@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
                                                           {16384, 65536},
                                                           {65536, 65536},
                                                           {262144, 262144}}) {
-    const PairCorrelation corr(ma, mb, tau0, gm);
+    const PairCorrelation corr(ma, mb, tau0, gm ? std::vector<double>{*gm} : std::vector<double>{});
     const LagSums fresh = covariance_lag_sums(corr, n_phase);
     const LagSums old8 = covariance_lag_sums_fft(ma, mb, n_phase, tau0, gm, 8);
     const bool x4 = 32 * (ma + mb) <= (std::int64_t{1} << 22);
@@ -256,7 +256,7 @@ int main(int argc, char** argv) {
     std::vector<double> t;
     for (int r = 0; r < std::max(1, runs / 2); ++r) {
       const auto t0 = Clock::now();
-      const CovarianceBasis basis = build_covariance_basis(m, samples + 1, 0.005, std::nullopt);
+      const CovarianceBasis basis = build_covariance_basis(m, samples + 1, 0.005, {});
       t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     }
     std::printf("| %lld | %zu to %lld | %.1f ms | %.1f MiB |\n", static_cast<long long>(samples),

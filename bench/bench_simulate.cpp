@@ -39,7 +39,7 @@ sigmatau::SimulationConfig every_term(std::int64_t samples, unsigned threads) {
   t.quantization = 2e-6;
   t.bias_instability = 3e-5;
   t.rate_random_walk = 2e-5;
-  t.gauss_markov = sigmatau::GaussMarkov{5e-5, 2.0};
+  t.gauss_markov = {sigmatau::GaussMarkov{5e-5, 2.0}};
   t.rate_ramp = 1e-7;
   t.sinusoid = sigmatau::Sinusoid{2e-5, 1.3, 0.4};
   sigmatau::SimulationConfig c;
@@ -101,14 +101,14 @@ int run_stats(int seeds) {
   cases[3] = {"random walk K", {}, {-2}};
   cases[3].terms.rate_random_walk = 1e-5;
   cases[4] = {"Gauss-Markov", {}, {2, 0, -1, -2}};
-  cases[4].terms.gauss_markov = GaussMarkov{1e-4, 5.0};
+  cases[4].terms.gauss_markov = {GaussMarkov{1e-4, 5.0}};
   cases[5] = {"all terms", {}, {2, 0, -1, -2}};
   auto& all = cases[5].terms;
   all.white = 1e-3;
   all.quantization = 2e-6;
   all.bias_instability = 3e-5;
   all.rate_random_walk = 2e-5;
-  all.gauss_markov = GaussMarkov{5e-5, 2.0};
+  all.gauss_markov = {GaussMarkov{5e-5, 2.0}};
   all.rate_ramp = 1e-7;
   all.sinusoid = Sinusoid{2e-5, 1.3, 0.4};
   std::vector<std::int64_t> ms;

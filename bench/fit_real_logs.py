@@ -91,10 +91,16 @@ def main():
             ci = intervals.get(ch["name"], {})
             dep_joint = departures(points, "joint_model_dev" if readings else "model_dev", ci)
             dep_rep = departures(points, "model_dev", ci)
+            added = [f"GM(T_c {g['tau_c_s']:.3g} s)" for g in joint.get("gauss_markov", [])]
+            if joint.get("sinusoid"):
+                added.append(f"SIN({joint['sinusoid']['frequency_hz']:.3g} Hz)")
+            left_out = joint.get("left_out_taus_s", [])
             rows.append({
                 "channel": f"{name} {ch['name']}",
                 "reported": ("read-outs " if readings else "joint ") + ",".join(ch["model_terms"]),
-                "joint": ",".join(joint["model_terms"]),
+                "joint": ",".join(joint["model_terms"] + added) +
+                         (f"; taus left out: {', '.join(f'{t:.3g}' for t in left_out)} s" if left_out else ""),
+                "coverage": (len(points) - len(left_out)) / len(points),
                 "p": joint.get("p_value"),
                 "dep_joint": dep_joint,
                 "dep_rep": dep_rep,
@@ -126,7 +132,7 @@ def main():
         p = r["p"]
         passed_p += p is not None and p >= 1e-3
         med_ok = r["dep_joint"] and statistics.median(d[1] for d in r["dep_joint"]) <= 0.05
-        passed_curve += jok == "ok" and bool(med_ok)
+        passed_curve += jok == "ok" and bool(med_ok) and r["coverage"] >= 0.8
         print(f"| {r['channel']} | {r['joint']} | {p:.2g} | {jm} | {jok} | {jmed} | "
               f"{r['joint_b']} {r['unit']} | {r['reported']} | {rm} | {rok} | {rmed} | "
               f"{r['reported_b']} {r['unit']} | {r['minimum']} {r['unit']} |")

@@ -39,6 +39,7 @@ AnalysisOptions chain_options(const ChainArguments& args) {
   check_tau_range(args.fit_tau_min_s, args.fit_tau_max_s);  // before the log is read
   options.fit_tau_min_s = args.fit_tau_min_s;
   options.fit_tau_max_s = args.fit_tau_max_s;
+  options.fit_added_terms = !args.ieee_terms_only;
   if (args.trim == "auto") {
     options.trim = TrimMode::automatic;
   } else if (args.trim == "none") {
@@ -138,6 +139,10 @@ void add_chain_options(CLI::App& command, ChainArguments& args) {
                      "the noise-term fit uses only taus >= this [s] (a sensor that filters its "
                      "output departs from the noise terms at the shortest taus)");
   command.add_option("--tau-max", args.fit_tau_max_s, "the noise-term fit uses only taus <= this [s]");
+  command.add_flag("--ieee-terms-only", args.ieee_terms_only,
+                   "the noise-term fit keeps to Q, N, B, K, R even where they do not describe the "
+                   "curve (by default it then adds Gauss-Markov terms or a sinusoid and leaves out "
+                   "the shortest taus a sensor's filter bends: docs/fit.md)");
   command.add_option("--spec", args.spec, "data sheet to check against (file or name in specs/)");
   command.add_option("--rate-out", args.rate_out,
                      "filter rates [Hz] for the covariances and exports (default: the log's rate)");

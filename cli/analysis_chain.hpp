@@ -21,6 +21,7 @@ struct ChainArguments {
   std::string taus = "octave";
   double ci = 0.683;
   double fit_tau_min_s = 0;                                        ///< [s]
+  bool ieee_terms_only = false;  ///< --ieee-terms-only
   double fit_tau_max_s = std::numeric_limits<double>::infinity();  ///< [s]
   std::string spec;
   std::vector<double> rate_out;  ///< [Hz]

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <cstdio>
 #include <fstream>
@@ -37,6 +38,7 @@ struct FitArguments {
   double ci = 0.95;
   double tau_min_s = 0;
   double tau_max_s = std::numeric_limits<double>::infinity();
+  bool ieee_terms_only = false;
   std::string format = "table";
   std::string output;
   bool force = false;
@@ -119,7 +121,14 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
   nlohmann::json params = nlohmann::json::object();
   for (const auto& p : fit.parameters) {
     nlohmann::json j;
-    if (p.in_model) {
+    if (p.from_model_floor) {
+      // Added terms: B read from the model's ADEV floor (the flicker coefficient beside it).
+      j["value"] = p.value;
+      j["ci_low"] = p.ci_low;
+      j["ci_high"] = p.ci_high;
+      j["from_model_floor"] = true;
+      if (std::isfinite(p.flicker)) j["flicker"] = p.flicker;
+    } else if (p.in_model) {
       j["value"] = p.value;
       j["ci_low"] = p.ci_low;
       j["ci_high"] = p.ci_high;
@@ -139,6 +148,28 @@ nlohmann::json parameters_json(const ChannelFit& fit, Sensor sensor) {
   return params;
 }
 
+nlohmann::json gauss_markov_json(const ChannelFit& fit, Sensor sensor) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& g : fit.gauss_markov) {
+    nlohmann::json j = {{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
+                        {"tau_c_s", g.tau_c_s}, {"leading_points", g.leading_points},
+                        {"unit", std::string(units_of(NoiseTerm::gauss_markov, sensor).si)}};
+    if (std::isfinite(g.edf)) j["edf"] = g.edf;
+    out.push_back(j);
+  }
+  return out;
+}
+
+nlohmann::json sinusoid_json(const ChannelFit& fit, Sensor sensor) {
+  if (!fit.sinusoid) return nullptr;
+  const auto& s = *fit.sinusoid;
+  nlohmann::json j = {{"amplitude", s.amplitude}, {"ci_low", s.ci_low}, {"ci_high", s.ci_high},
+                      {"frequency_hz", s.frequency_hz}, {"leading_points", s.leading_points},
+                      {"unit", std::string(units_of(NoiseTerm::sinusoid, sensor).si)}};
+  if (std::isfinite(s.edf)) j["edf"] = s.edf;
+  return j;
+}
+
 nlohmann::json terms_json(const ChannelFit& fit) {
   nlohmann::json t = nlohmann::json::array();
   for (const auto term : fit.model_terms) t.push_back(std::string(term_symbol(term)));
@@ -156,7 +187,7 @@ nlohmann::json contradictions_json(const ChannelFit& fit, Sensor sensor) {
 std::vector<std::string> channel_warnings(const Channel& c) {
   std::vector<std::string> out;
   if (!c.fit.joint) return out;
-  for (const std::string& w : {misfit_warning(*c.fit.joint, c.name),
+  for (const std::string& w : {misfit_warning(*c.fit.joint, c.name), left_out_warning(*c.fit.joint, c.name),
                                short_log_warning(*c.fit.joint, c.name),
                                readings_warning(c.fit, c.name, c.sensor)}) {
     if (!w.empty()) out.push_back(w);
@@ -185,6 +216,8 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
     j["quantity"] = c.sensor == Sensor::gyro ? "angular_rate" : "specific_force";
     j["model_terms"] = terms_json(primary);
     j["parameters"] = parameters_json(primary, c.sensor);
+    j["gauss_markov"] = gauss_markov_json(primary, c.sensor);
+    j["sinusoid"] = sinusoid_json(primary, c.sensor);
     j["method"] = std::string(to_string(primary.method));
     j["points"] = primary.points;
     j["warnings"] = channel_warnings(c);
@@ -197,11 +230,15 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       const ChannelFit& joint = *c.fit.joint;
       j["joint"] = {{"model_terms", terms_json(joint)},
                     {"parameters", parameters_json(joint, c.sensor)},
+                    {"gauss_markov", gauss_markov_json(joint, c.sensor)},
+                    {"sinusoid", sinusoid_json(joint, c.sensor)},
                     {"method", "joint"},
                     {"chi_squared", joint.chi_squared},
                     {"bic", joint.bic},
                     {"dof", joint.dof},
                     {"p_value", joint.p_value},
+                    {"model_error", joint.model_error},
+                    {"left_out_taus_s", joint.left_out_taus_s},
                     {"misfit_tau_s", joint.misfit_tau_s},
                     {"contradictions", contradictions_json(joint, c.sensor)}};
     } else if (c.fit.joint) {
@@ -209,6 +246,8 @@ std::string render_json(const std::string& input, std::optional<double> log_rate
       j["bic"] = primary.bic;
       j["dof"] = primary.dof;
       j["p_value"] = primary.p_value;
+      j["model_error"] = primary.model_error;
+      j["left_out_taus_s"] = primary.left_out_taus_s;
       j["misfit_tau_s"] = primary.misfit_tau_s;
     }
     if (c.fit.joint && c.fit.slopes) {
@@ -241,6 +280,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
   for (std::size_t i = 0; i < fit.model_terms.size(); ++i) {
     out << (i ? "," : "") << term_symbol(fit.model_terms[i]);
   }
+  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
+    out << (fit.model_terms.empty() && g == 0 ? "" : ",") << "GM" << g + 1;
+  }
+  if (fit.sinusoid) out << (fit.model_terms.empty() && fit.gauss_markov.empty() ? "" : ",") << "SIN";
   out << "  (" << ci * 100 << "% intervals)\n";
   char line[200];
   std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13s  %s\n", "", "term", "ci_low", "value",
@@ -252,9 +295,15 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const double f = convert(1.0, u.si, sheet);
     const std::string sym(term_symbol(p.term));
     const std::string nm(term_name(p.term, sensor));
-    if (p.in_model) {
-      std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s", sym.c_str(), nm.c_str(),
-                    p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str());
+    if (p.in_model || p.from_model_floor) {
+      std::snprintf(line, sizeof line, "%-2s %-24s %13.5g %13.5g %13.5g  %s%s", sym.c_str(), nm.c_str(),
+                    p.ci_low * f, p.value * f, p.ci_high * f, sheet.c_str(),
+                    p.from_model_floor ? " (the model's ADEV floor / 0.664, added terms included)" : "");
+    if (p.from_model_floor && std::isfinite(p.flicker)) {
+      char flicker[80];
+      std::snprintf(flicker, sizeof flicker, "; flicker term alone B = %.5g %s", p.flicker * f, sheet.c_str());
+      std::strncat(line, flicker, sizeof line - std::strlen(line) - 1);
+    }
     } else {
       std::snprintf(line, sizeof line, "%-2s %-24s %13s %13s %13.5g  %s (not supported by the data: upper bound)",
                     sym.c_str(), nm.c_str(), "", "<", p.upper_bound * f, sheet.c_str());
@@ -266,9 +315,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
       // The curve's own minimum is printed with its value: beside the model's floor, its tau
       // alone read as "the curve's minimum is the floor", 5-7x off when the model misfits.
       char floor[80];
-      std::snprintf(floor, sizeof floor, "%.5g %s", kFlickerFloorFactor * (p.in_model ? p.value : p.upper_bound) * f,
+      const bool value = p.in_model || p.from_model_floor;
+      std::snprintf(floor, sizeof floor, "%.5g %s", kFlickerFloorFactor * (value ? p.value : p.upper_bound) * f,
                     sheet.c_str());
-      out << "  (ADEV floor 0.664 B " << (p.in_model ? "= " : "< ") << floor
+      out << "  (ADEV floor 0.664 B " << (value ? "= " : "< ") << floor
           << ", as data sheets print bias stability";
       if (std::isfinite(p.tau_min_s) && std::isfinite(p.adev_min)) {
         char minimum[120];
@@ -279,6 +329,30 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
       out << ")";
     }
     out << "\n";
+  }
+  for (std::size_t g = 0; g < fit.gauss_markov.size(); ++g) {
+    const auto& e = fit.gauss_markov[g];
+    const TermUnits u = units_of(NoiseTerm::gauss_markov, sensor);
+    const std::string sheet(u.sheet);
+    const double f = convert(1.0, u.si, sheet);
+    const std::string sym = "GM" + std::to_string(g + 1);
+    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, T_c = %.4g s\n", sym.c_str(),
+                  "Gauss-Markov sigma", e.ci_low * f, e.sigma * f, e.ci_high * f, sheet.c_str(), e.tau_c_s);
+    out << line;
+  }
+  if (fit.sinusoid) {
+    const auto& e = *fit.sinusoid;
+    const TermUnits u = units_of(NoiseTerm::sinusoid, sensor);
+    const std::string sheet(u.sheet);
+    const double f = convert(1.0, u.si, sheet);
+    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, f = %.4g Hz\n", "SIN",
+                  "sinusoid amplitude", e.ci_low * f, e.amplitude * f, e.ci_high * f, sheet.c_str(), e.frequency_hz);
+    out << line;
+  }
+  if (fit.model_error > 0) {
+    std::snprintf(line, sizeof line, "   weights include a relative model error of %.3g (the intervals carry the scatter the model leaves)\n",
+                  fit.model_error);
+    out << line;
   }
   for (const auto& c : fit.contradictions) out << "   contradicted by the curve: " << describe(c, sensor) << "\n";
   if (fit.method == FitMethod::joint) {
@@ -444,6 +518,7 @@ void run_fit(const FitArguments& args) {
   check_tau_range(args.tau_min_s, args.tau_max_s);
   options.tau_min_s = args.tau_min_s;
   options.tau_max_s = args.tau_max_s;
+  options.added_terms = !args.ieee_terms_only;
   if (args.format != "table" && args.format != "json") {
     throw Error("--format must be table or json, got \"" + args.format + "\"");
   }
@@ -572,6 +647,10 @@ void add_fit_command(CLI::App& app) {
                       "fit only taus >= this [s] (a sensor that filters its output departs from "
                       "the noise terms at the shortest taus)");
   command->add_option("--tau-max", args->tau_max_s, "fit only taus <= this [s]");
+  command->add_flag("--ieee-terms-only", args->ieee_terms_only,
+                    "keep to Q, N, B, K, R even where they do not describe the curve (by default "
+                    "the joint fit then adds Gauss-Markov terms or a sinusoid, weights with a model "
+                    "error and leaves out the shortest taus a sensor's filter bends: docs/fit.md)");
   command->add_option("--format", args->format, "table | json")->capture_default_str();
   command->add_option("-o,--output", args->output, "write to FILE (atomically) instead of stdout");
   command->add_flag("--force", args->force, "overwrite an existing output file");

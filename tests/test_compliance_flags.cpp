@@ -13,6 +13,7 @@
 #include "made_up_sheet.hpp"
 #include "sigmatau/compliance.hpp"
 #include "sigmatau/fit.hpp"
+#include "sigmatau/noise_model.hpp"
 #include "sigmatau/plot.hpp"
 #include "sigmatau/report.hpp"
 #include "sigmatau/spec.hpp"
@@ -327,4 +328,42 @@ TEST_CASE("the ADEV plot keys every fitted term once, whichever channel keeps it
   // Distinct colours per term (SVG writes them as rgb(r, g, b)): N cyan, K brown.
   CHECK(svg.find("rgb( 23, 190, 207)") != std::string::npos);
   CHECK(svg.find("rgb(140,  86,  75)") != std::string::npos);
+}
+
+TEST_CASE("report: a Gauss-Markov sum draws one keyed curve per entry, each its own colour") {
+  const std::vector<double> taus{0.01, 0.1, 1, 10, 100};
+  nlohmann::json points = nlohmann::json::array();
+  std::vector<double> total, gm1, gm2;
+  NoiseTerms t;
+  t.gauss_markov = {GaussMarkov{1e-4, 0.5}, GaussMarkov{5e-5, 20.0}};
+  for (const double tau : taus) {
+    const double dev = std::sqrt(continuous_avar(t, tau));
+    points.push_back({{"tau", tau}, {"dev", dev}, {"ci_low", 0.9 * dev}, {"ci_high", 1.1 * dev}});
+    total.push_back(dev);
+    gm1.push_back(std::sqrt(continuous_avar(only_gauss_markov(t, 0), tau)));
+    gm2.push_back(std::sqrt(continuous_avar(only_gauss_markov(t, 1), tau)));
+  }
+  const nlohmann::json results = {
+      {"tool", "sigmatau"},
+      {"version", "test"},
+      {"input", {{"path", "log.csv"}}},
+      {"channels",
+       {{{"name", "gx"},
+         {"sensor", "gyro"},
+         {"allan", {{{"statistic", "oadev"}, {"points", points}}}}}}},
+      {"fit",
+       {{"channels",
+         {{{"name", "gx"},
+           {"parameters", nlohmann::json::object()},
+           {"model_adev", {{"tau", taus}, {"adev", total}}},
+           {"terms_adev", {{"GM1", gm1}, {"GM2", gm2}}}}}}}}};
+  ReportOptions options;
+  options.plot_format = PlotFormat::svg;
+  const ReportFiles files = build_report(results.dump(), options);
+  REQUIRE(files.files.count("adev_gyro.svg") == 1);
+  const std::string& svg = files.files.at("adev_gyro.svg");
+  CHECK(svg.find(">GM1 term<") != std::string::npos);
+  CHECK(svg.find(">GM2 term<") != std::string::npos);
+  CHECK(svg.find("rgb(255, 127,  14)") != std::string::npos);  // GM1 orange
+  CHECK(svg.find("rgb(196, 156,   0)") != std::string::npos);  // GM2 dark yellow
 }

@@ -6,6 +6,7 @@
 
 #include "sigmatau/convert.hpp"
 #include "sigmatau/error.hpp"
+#include "sigmatau/filter_export.hpp"
 #include "sigmatau/units.hpp"
 #include "test_support.hpp"
 
@@ -144,7 +145,7 @@ TEST_CASE("Gauss-Markov from a bias stability peaks at B_ds at tau_min (THEORY.m
   // Independent check with the continuous GM Allan variance of noise_model.hpp: its ADEV at
   // tau_min equals B_ds to the 4 digits of 0.6174 and 1.892 (rtol 1e-3).
   NoiseTerms gm;
-  gm.gauss_markov = GaussMarkov{r.bias->sigma(0), r.bias->tau_c_s(0)};
+  gm.gauss_markov = {GaussMarkov{r.bias->sigma(0), r.bias->tau_c_s(0)}};
   SIGMATAU_CHECK_REL(std::sqrt(continuous_avar(gm, 400.0)), b_ds, 1e-3);
   // ... and it is the peak: 10% either side is lower.
   CHECK(continuous_avar(gm, 360.0) < continuous_avar(gm, 400.0));
@@ -159,6 +160,61 @@ TEST_CASE("Gauss-Markov from a bias stability peaks at B_ds at tau_min (THEORY.m
   }
   SUBCASE("a GM cannot be made from K alone") {
     CHECK_THROWS_AS(discretize(gyro_terms(std::nullopt, std::nullopt, 1e-5), o), Error);
+  }
+}
+
+TEST_CASE("a sum of Gauss-Markov processes: gm carries the largest sigma, rw sums K^2") {
+  NoiseTerms t;
+  t.white = 1e-4;
+  // The larger sigma is the second entry, with the shorter T_c: the rule is the ADEV bump's
+  // height (0.6174 sigma), not the order written nor the correlation time.
+  const GaussMarkov slow{2e-5, 500.0}, dominant{6e-5, 30.0};
+  t.gauss_markov = {slow, dominant};
+  const std::vector<TriadNoise> triads{uniform_triad(Sensor::gyro, t)};
+
+  SUBCASE("gm: one state, the dominant entry, and the files say what was left out") {
+    ConvertOptions o = at(100);
+    o.bias_model = BiasModel::gauss_markov;
+    const DiscreteNoise n = convert_noise(triads, o, "a test model");
+    REQUIRE(n.gyro->bias);
+    CHECK(n.gyro->bias->source == BiasSource::gauss_markov);
+    CHECK(n.gyro->bias->sigma(0) == dominant.sigma);
+    CHECK(n.gyro->bias->tau_c_s(0) == dominant.tau_c_s);
+    // Left out: 4e-10 of 4e-10 + 3.6e-9 of stationary variance, 10 %.
+    REQUIRE(n.notes.size() == 1);
+    CHECK(n.notes[0].find("sum of 2 Gauss-Markov processes") != std::string::npos);
+    CHECK(n.notes[0].find("T_c 30 s") != std::string::npos);
+    CHECK(n.notes[0].find("(10 % of the stationary bias variance)") != std::string::npos);
+    for (ExportFormat f : {ExportFormat::json, ExportFormat::openvins}) {
+      const std::string file = export_filter_config(n, f);
+      INFO(to_string(f));
+      CHECK(file.find("sum of 2 Gauss-Markov processes") != std::string::npos);
+    }
+    CHECK(n.explain.find("the entry with the largest sigma") != std::string::npos);
+  }
+  SUBCASE("rw: K^2 is the sum of 2 sigma_i^2 / T_c_i, the sum's short-tau random walk") {
+    const DiscreteNoise n = convert_noise(triads, at(100), "a test model");
+    REQUIRE(n.gyro->bias);
+    const double k = n.gyro->bias->random_walk_density(0);
+    SIGMATAU_CHECK_REL(k * k, 2 * slow.sigma * slow.sigma / slow.tau_c_s +
+                                  2 * dominant.sigma * dominant.sigma / dominant.tau_c_s,
+                       kRoundOff);
+    // Independent check: the sum's continuous AVAR at tau = 1e-3 x the shortest T_c is
+    // K^2 tau / 3 to O(tau / T_c): the next term of each entry's series is -(3/4) tau/T_c
+    // relative, 7.5e-4 here, so 1e-3.
+    NoiseTerms gm_only;
+    gm_only.gauss_markov = t.gauss_markov;
+    const double tau = 0.03;
+    SIGMATAU_CHECK_REL(continuous_avar(gm_only, tau), k * k * tau / 3, 1e-3);
+    REQUIRE(n.notes.size() == 1);
+    CHECK(n.notes[0].find("K^2 = sum 2 sigma_i^2/T_c_i") != std::string::npos);
+  }
+  SUBCASE("one entry: no note (files as before)") {
+    NoiseTerms one;
+    one.gauss_markov = {dominant};
+    ConvertOptions o = at(100);
+    o.bias_model = BiasModel::gauss_markov;
+    CHECK(convert_noise({uniform_triad(Sensor::gyro, one)}, o, "x").notes.empty());
   }
 }
 

@@ -383,7 +383,10 @@ TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min
   // A sensor that low-pass filters its output: the first three points 20 % below N^2 / tau.
   AllanCurve filtered = exact_curve(nbk());
   for (std::size_t j = 0; j < 3; ++j) filtered.points[j].value.dev *= 0.8;
-  const NoiseFit bad = fit_noise(filtered, source, FitOptions{});
+  // The IEEE terms alone (no added terms, no taus left out: fit_added_terms.cpp, fit.cpp).
+  FitOptions ieee_only;
+  ieee_only.added_terms = false;
+  const NoiseFit bad = fit_noise(filtered, source, ieee_only);
   REQUIRE(bad.joint);
   CHECK(bad.joint->p_value < kMisfitPValue);
   // The fit bends toward the filtered points, so the furthest is among them or next to them.
@@ -395,10 +398,26 @@ TEST_CASE("goodness of fit: a curve no model describes is flagged, and --tau-min
   SUBCASE("a bump mid-curve is something outside the model, not the sensor's filter") {
     AllanCurve bump = exact_curve(nbk());
     bump.points[8].value.dev *= 1.3;  // 2.56 s: a Gauss-Markov or sinusoid's hump
-    const NoiseFit f = fit_noise(bump, source, FitOptions{});
+    const NoiseFit f = fit_noise(bump, source, ieee_only);
     CHECK(f.joint->p_value < kMisfitPValue);
     CHECK_FALSE(f.joint->misfit_at_shortest_taus);
     CHECK(misfit_warning(*f.joint, "gx").find("Something outside Q, N, B, K, R") != std::string::npos);
+  }
+
+  SUBCASE("by default the filtered taus are described: left out, or a short Gauss-Markov") {
+    // A first-order filter's output is a Gauss-Markov process of short T_c: the fit leaves out
+    // the point it cannot describe and states the rest with such a term (or leaves them all out).
+    const NoiseFit mended = fit_noise(filtered, source, FitOptions{});
+    REQUIRE(mended.joint);
+    INFO("left out " << mended.joint->left_out_taus_s.size() << ", p = " << mended.joint->p_value
+                     << ", GM terms " << mended.joint->gauss_markov.size());
+    REQUIRE_FALSE(mended.joint->left_out_taus_s.empty());
+    CHECK(mended.joint->left_out_taus_s.front() == doctest::Approx(kTau0));
+    CHECK(mended.joint->p_value > kMisfitPValue);
+    CHECK_FALSE(left_out_warning(*mended.joint, "gx").empty());
+    // The curve is described (p above; nothing it reports contradicts it). B alone is not
+    // pinned: on an 11-minute curve a Gauss-Markov term and flicker trade parts of the floor.
+    CHECK(mended.joint->contradictions.empty());
   }
 
   FitOptions from_fourth;

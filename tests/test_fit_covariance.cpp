@@ -27,7 +27,7 @@ using namespace sigmatau::detail;
 constexpr double kTau0 = 0.005;  // 200 Hz
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kPi = 3.14159265358979323846;
-const std::string kNames[] = {"Q", "N", "B", "K", "GM"};
+const std::string kNames[] = {"Q", "N", "B", "K", "GM1", "GM2", "GM3"};
 
 /// Every lag summed one by one with the same correlations (the quadrature's reference).
 LagSums direct_lag_sums(const PairCorrelation& corr, std::int64_t n_phase) {
@@ -93,7 +93,7 @@ TEST_CASE("Q, N and K lag correlations equal the inverse FFT of their per-sample
     std::int64_t big_p = 256;
     while (big_p < 4 * (ma + mb + 1)) big_p *= 2;
     const auto ref = fft_lag_correlations(ma, mb, kTau0, std::nullopt, big_p);
-    const PairCorrelation corr(ma, mb, kTau0, std::nullopt);
+    const PairCorrelation corr(ma, mb, kTau0);
     std::vector<double> c(4);
     for (const int t : {0, 1, 3}) {
       const auto& r = ref[static_cast<std::size_t>(t)];
@@ -127,7 +127,8 @@ TEST_CASE(
     for (const std::optional<double> gm :
          {std::optional<double>{}, std::optional<double>{0.3}, std::optional<double>{0.01}}) {
       const auto ref = fft_lag_correlations(ma, mb, kTau0, gm, big_p);
-      const PairCorrelation corr(ma, mb, kTau0, gm);
+      const std::vector<double> rates = gm ? std::vector<double>{*gm} : std::vector<double>{};
+      const PairCorrelation corr(ma, mb, kTau0, rates);
       const int t = gm ? 4 : 2;
       std::vector<double> c(static_cast<std::size_t>(corr.terms()));
       const auto& r = ref[static_cast<std::size_t>(t)];
@@ -177,7 +178,7 @@ TEST_CASE("the flicker far-field series joins the direct sum of generalized cova
   for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{
            {1, 1}, {1, 5}, {8, 3}, {100, 100}, {1000, 17}, {65536, 4096}}) {
     const std::int64_t ma = factors.first, mb = factors.second;
-    const PairCorrelation corr(ma, mb, kTau0, std::nullopt);
+    const PairCorrelation corr(ma, mb, kTau0);
     std::vector<double> c(4);
     for (const double factor : {6.01, 6.5, 9.0}) {
       const double u = std::ceil(factor * static_cast<double>(ma + mb));
@@ -200,7 +201,7 @@ TEST_CASE("the flicker inner series joins the direct second difference for unequ
   for (const auto& factors : std::vector<std::pair<std::int64_t, std::int64_t>>{
            {1, 64}, {1, 1000}, {2, 5000}, {7, 3000}, {3000, 7}, {100, 20000}}) {
     const std::int64_t ma = factors.first, mb = factors.second;
-    const PairCorrelation corr(ma, mb, kTau0, std::nullopt);
+    const PairCorrelation corr(ma, mb, kTau0);
     std::vector<double> c(4);
     const std::int64_t span = ma + mb;
     double worst = 0;
@@ -226,7 +227,7 @@ TEST_CASE("Q, N, K and ramp lag sums agree with the previous FFT path to 1e-10")
   for (const Layout& layout : kLayouts) {
     const std::int64_t ma = layout.ma, mb = layout.mb, n = layout.n_phase;
     const LagSums fft = covariance_lag_sums_fft(ma, mb, n, kTau0, std::nullopt, 8);
-    const LagSums fresh = covariance_lag_sums(PairCorrelation(ma, mb, kTau0, std::nullopt), n);
+    const LagSums fresh = covariance_lag_sums(PairCorrelation(ma, mb, kTau0), n);
     for (const int i : {0, 1, 3}) {
       for (const int j : {0, 1, 3}) {
         INFO(kNames[i] << "," << kNames[j] << " m_a = " << ma << " m_b = " << mb << " N = " << n
@@ -248,8 +249,10 @@ TEST_CASE("flicker and Gauss-Markov lag sums by quadrature equal the direct sum 
   double worst = 0;
   for (const Layout& layout : kLayouts) {
     const std::int64_t ma = layout.ma, mb = layout.mb, n = layout.n_phase;
-    for (const std::optional<double> gm :
-         {std::optional<double>{}, std::optional<double>{0.02}, std::optional<double>{1e-4}}) {
+    // The last set: three Gauss-Markov terms at once (a fast, a slow and a near-white one),
+    // each with its own correlations and cross sums.
+    for (const std::vector<double>& gm : std::vector<std::vector<double>>{
+             {}, {0.02}, {1e-4}, {0.02, 1e-4, 0.3}}) {
       const PairCorrelation corr(ma, mb, kTau0, gm);
       const LagSums fresh = covariance_lag_sums(corr, n);
       const LagSums direct = direct_lag_sums(corr, n);
@@ -306,7 +309,7 @@ TEST_CASE("lag sums at m = 2^22 keep 1e-12 relative accuracy against a long doub
         for (const int j : {0, 1, 3}) cc[i][j] += w * c[i] * c[j];
       }
     }
-    const LagSums fresh = covariance_lag_sums(PairCorrelation(ma, mb, kTau0, std::nullopt), n);
+    const LagSums fresh = covariance_lag_sums(PairCorrelation(ma, mb, kTau0), n);
     double worst = 0;
     for (const int i : {0, 1, 3}) {
       for (const int j : {0, 1, 3}) {
@@ -329,7 +332,7 @@ TEST_CASE(
   std::vector<std::int64_t> m;
   for (std::int64_t x = 1; x <= (std::int64_t{1} << 23); x *= 2) m.push_back(x);
   const std::int64_t n = (std::int64_t{1} << 25) + 1;
-  const CovarianceBasis basis = build_covariance_basis(m, n, kTau0, std::nullopt);
+  const CovarianceBasis basis = build_covariance_basis(m, n, kTau0, {});
   for (std::size_t b = 0; b < m.size(); ++b) {
     for (std::size_t a = 0; a <= b; ++a) {
       const Eigen::MatrixXd& h = basis.h[basis.pair_index(a, b)];

@@ -46,6 +46,10 @@ std::string contradictions_of(const ChannelFit& fit, const AllanCurve& curve,
   for (const auto& p : curve.points) {
     if (!(p.value.dev > 0) || !(p.confidence.edf > 0) || !std::isfinite(p.confidence.edf)) continue;
     if (source.n_phase_points - 2 * p.value.m < 1) continue;
+    // The taus the fit left out as bent by the sensor's filter (said so: left_out_warning).
+    bool left_out = false;
+    for (const double t : fit.left_out_taus_s) left_out = left_out || std::abs(t - p.value.tau_s) <= 1e-9 * t;
+    if (left_out) continue;
     points.push_back({p.value.m, p.value.dev, {p.value.dev, p.confidence.edf}});
   }
   // Each point's EDF under the fit's model, 2 A^2 / Var, from the exact covariance of the
@@ -69,10 +73,10 @@ std::string contradictions_of(const ChannelFit& fit, const AllanCurve& curve,
   const NoiseTerms& model = terms;
   std::string out;
   const auto& b = fit.parameter(NoiseTerm::bias_instability);
-  if (b.in_model && kFlickerFloorFactor * b.value > points[low].ci.high) {
+  if ((b.in_model || b.from_model_floor) && kFlickerFloorFactor * b.value > points[low].ci.high) {
     out += "floor 0.664 B above the minimum; ";
   }
-  if (!b.in_model) {
+  if (!b.in_model && !b.from_model_floor) {
     NoiseTerms bounded = model;
     bounded.bias_instability = b.upper_bound;
     if (std::sqrt(sampled_avar(bounded, points[low].m, sampling)) < points[low].ci.low) {
@@ -83,6 +87,26 @@ std::string contradictions_of(const ChannelFit& fit, const AllanCurve& curve,
     for (const auto& p : points) {
       if (std::sqrt(sampled_avar(model, term, p.m, sampling)) > p.ci.high) {
         out += std::string(term_symbol(term)) + " above the curve at m = " + std::to_string(p.m) + "; ";
+        break;
+      }
+    }
+  }
+  // The added terms too, each alone.
+  std::vector<NoiseTerms> added;
+  for (const auto& g : fit.gauss_markov) {
+    NoiseTerms one;
+    one.gauss_markov = {GaussMarkov{g.sigma, g.tau_c_s}};
+    added.push_back(one);
+  }
+  if (fit.sinusoid) {
+    NoiseTerms one;
+    one.sinusoid = Sinusoid{fit.sinusoid->amplitude, fit.sinusoid->frequency_hz, 0.0};
+    added.push_back(one);
+  }
+  for (const auto& one : added) {
+    for (const auto& p : points) {
+      if (std::sqrt(sampled_avar(one, p.m, sampling)) > p.ci.high) {
+        out += "an added term above the curve at m = " + std::to_string(p.m) + "; ";
         break;
       }
     }
@@ -135,9 +159,11 @@ TEST_CASE("on the real logs no reported B, bound on B or term level contradicts 
   MESSAGE(channels << " real channels, " << read_outs << " reported from the curve's read-outs");
 }
 
-TEST_CASE("the ADIS16405 gyro_x reports the curve's minimum as its bias stability") {
-  // The issue's case: the joint fit's floor 0.664 B = 126.5 deg/h against the curve's minimum
-  // of 18.8 deg/h at 1311 s.
+TEST_CASE("the ADIS16405 gyro_x: a model with added terms describes the curve, its floor at the minimum") {
+  // The issue's case: the IEEE joint fit's floor 0.664 B = 126.5 deg/h against the curve's
+  // minimum of 18.8 deg/h at 1311 s, rejected with chi-squared 2.47e4 for 16 dof. With the
+  // terms real sensors add (fit_added_terms.cpp) and the filter-bent shortest taus left out the
+  // joint fit describes the curve (bench/results_fit_real.md: p = 0.11) and is reported.
   if (!test::has_reference_data("imu/adis16405_imudata")) return;
   LogOptions options;
   options.path = (test::reference_data_dir() / "imu/adis16405_imudata/adis16405_imu1_100Hz.csv.gz").string();
@@ -146,16 +172,24 @@ TEST_CASE("the ADIS16405 gyro_x reports the curve's minimum as its bias stabilit
   const auto series = PhaseSeries::from_rate(log.channels[0], 0.01);
   const AllanCurve curve = compute_allan_curve(series, Statistic::oadev, TauSpec{}, 0.683);
   const NoiseFit fit = fit_noise(curve, {0.01, static_cast<std::int64_t>(series.size()), 0}, {});
-  REQUIRE(fit.readings.has_value());
-  bool floor_contradiction = false;
-  for (const auto& c : fit.joint->contradictions) {
-    floor_contradiction = floor_contradiction || c.kind == Contradiction::Kind::floor_above_minimum;
-  }
-  CHECK(floor_contradiction);
+  REQUIRE(fit.joint);
+  CHECK_FALSE(fit.readings.has_value());
+  CHECK(fit.joint->p_value >= kMisfitPValue);
+  CHECK(fit.joint->contradictions.empty());
+  CHECK_FALSE(fit.joint->left_out_taus_s.empty());
+  CHECK((!fit.joint->gauss_markov.empty() || fit.joint->sinusoid.has_value()));
+  // The reported bias stability 0.664 B lies inside the 95 % interval of the curve's minimum
+  // (18.8 deg/h at 1311 s, EDF ~ 2: the interval spans about 0.5x-4x; the fit gives 17.9).
   const auto& b = fit.reported().parameter(NoiseTerm::bias_instability);
-  REQUIRE(b.in_model);
-  // deg/s in the file: 18.8 deg/h = 5.22e-3 deg/s. The read-out is the minimum itself.
-  CHECK(kFlickerFloorFactor * b.value == test::rel(b.adev_min, 1e-12));
+  REQUIRE((b.in_model || b.from_model_floor));
+  double edf_min = 0;
+  for (const auto& p : curve.points) {
+    if (std::abs(p.value.tau_s - b.tau_min_s) <= 1e-9 * b.tau_min_s) edf_min = p.confidence.edf;
+  }
+  REQUIRE(edf_min > 0);
+  const Interval at_min = chi_squared_interval(b.adev_min, edf_min, 0.95);
+  CHECK(kFlickerFloorFactor * b.value >= at_min.low);
+  CHECK(kFlickerFloorFactor * b.value <= at_min.high);
   CHECK(b.adev_min * 3600 == test::rel(18.8, 0.01));  // the issue's figure, to its 3 digits
 }
 

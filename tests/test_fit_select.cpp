@@ -40,13 +40,13 @@ TEST_CASE("curve_deviance of one point follows the chi-squared likelihood ratio"
   // either ratio is decisive.
   const std::int64_t n_phase = 4097;
   for (const std::int64_t m : {std::int64_t{64}, std::int64_t{1024}}) {
-    const detail::CovarianceBasis basis = detail::build_covariance_basis({m}, n_phase, kTau0, std::nullopt);
+    const detail::CovarianceBasis basis = detail::build_covariance_basis({m}, n_phase, kTau0, {});
     NoiseTerms unit;
     unit.white = 1.0;
     detail::Design d;
     d.a = Eigen::MatrixXd::Zero(1, detail::kTermCount);
     d.a(0, detail::term_index(NoiseTerm::white)) = sampled_avar(unit, m, Sampling{kTau0, 0, false});
-    detail::TermVector theta = detail::TermVector::Zero();
+    detail::TermVector theta = detail::TermVector::Zero(detail::kTermCount);
     theta(detail::term_index(NoiseTerm::white)) = 1e-6;
     const double mu = (d.a * theta)(0);
     const double nu = 2 * mu * mu / basis.covariance(Eigen::VectorXd(theta))(0, 0);

@@ -39,7 +39,7 @@ double derived_avar(double s, double phi, std::int64_t m) {
 TEST_CASE("Gauss-Markov AVAR: the derivation above is sampled_avar's closed form") {
   for (const double tau_c : {0.02, 0.5, 30.0}) {
     NoiseTerms t;
-    t.gauss_markov = GaussMarkov{2e-3, tau_c};
+    t.gauss_markov = {GaussMarkov{2e-3, tau_c}};
     const double phi = std::exp(-0.01 / tau_c);
     for (const std::int64_t m : {1, 2, 7, 64, 1000, 100000}) {
       INFO("tau_c = " << tau_c << " m = " << m);
@@ -79,7 +79,7 @@ TEST_CASE("Gauss-Markov AVAR: the OADEV of a simulated AR(1) agrees within its o
   const auto points = compute_deviation(series, Statistic::oadev, m);
   REQUIRE(points.size() == m.size());
   NoiseTerms t;
-  t.gauss_markov = GaussMarkov{s, tau_c};
+  t.gauss_markov = {GaussMarkov{s, tau_c}};
   const Eigen::MatrixXd cov = oavar_covariance(t, m, static_cast<std::int64_t>(n) + 1, tau0);
   for (std::size_t j = 0; j < m.size(); ++j) {
     const double expected = derived_avar(s, phi, m[j]);

@@ -108,7 +108,7 @@ TEST_CASE("sampled white, quantization, random walk and ramp follow Zhang's exac
 
 TEST_CASE("Gauss-Markov: continuous form reproduces THEORY.md T12 and its hump") {
   NoiseTerms t;
-  t.gauss_markov = GaussMarkov{1.0, 10.0};
+  t.gauss_markov = {GaussMarkov{1.0, 10.0}};
   // T12 is printed to 6 digits: 2e-6 relative.
   CHECK(continuous_avar(t, NoiseTerm::gauss_markov, 1.0) == rel(0.0618919, 2e-6));
   CHECK(continuous_avar(t, NoiseTerm::gauss_markov, 10.0) == rel(0.336182, 2e-6));
@@ -134,7 +134,7 @@ TEST_CASE("Gauss-Markov: sampled AR(1) form against a long-double ACF sum and it
   for (double a : {1e-3, 1e-2, 0.3, 2.0}) {
     for (std::int64_t n : {1, 2, 7, 40, 300}) {
       NoiseTerms t;
-      t.gauss_markov = GaussMarkov{1.5, 1.0 / a};
+      t.gauss_markov = {GaussMarkov{1.5, 1.0 / a}};
       const long double phi = std::exp(-static_cast<long double>(a));
       long double acc = n * (1 - std::pow(phi, static_cast<long double>(n)));
       for (std::int64_t i = 1; i < n; ++i)
@@ -151,14 +151,14 @@ TEST_CASE("Gauss-Markov: sampled AR(1) form against a long-double ACF sum and it
   // the point-sampling term (relative ~1/(2 n^2) in the random-walk regime) plus O(tau0/T_c)
   // in the hump: 2e-3 bounds both.
   NoiseTerms t;
-  t.gauss_markov = GaussMarkov{1.0, 10.0};
+  t.gauss_markov = {GaussMarkov{1.0, 10.0}};
   for (std::int64_t n : {100, 1000, 10000, 100000})
     SIGMATAU_CHECK_REL(sampled_avar(t, NoiseTerm::gauss_markov, n, Sampling{0.01, 0, false}),
                        continuous_avar(t, NoiseTerm::gauss_markov, static_cast<double>(n) * 0.01), 2e-3);
   // tau0/T_c = 1e-8 (the cancellation-prone case) stays on the random-walk line
   // q (2n^2+1)/(6n), q = sigma^2 (1 - phi^2): relative deviation O(n tau0/T_c) <= 1e-5.
   NoiseTerms slow;
-  slow.gauss_markov = GaussMarkov{1.0, 1e8};
+  slow.gauss_markov = {GaussMarkov{1.0, 1e8}};
   for (std::int64_t n : {1, 10, 1000}) {
     const double q = -std::expm1(-2e-8);
     SIGMATAU_CHECK_REL(sampled_avar(slow, NoiseTerm::gauss_markov, n, Sampling{1.0, 0, false}),
@@ -193,7 +193,7 @@ TEST_CASE("continuous AVAR of each term equals the IEEE 4-integral of its two-si
   t.white = 3e-3;
   t.bias_instability = 2e-4;
   t.rate_random_walk = 5e-5;
-  t.gauss_markov = GaussMarkov{1e-3, 20.0};
+  t.gauss_markov = {GaussMarkov{1e-3, 20.0}};
   for (NoiseTerm term : {NoiseTerm::white, NoiseTerm::bias_instability,
                          NoiseTerm::rate_random_walk, NoiseTerm::gauss_markov}) {
     for (double tau : {0.1, 3.0, 100.0}) {
@@ -272,6 +272,44 @@ TEST_CASE("error model: (I + T) x + b + c (T - T0) and validation") {
   bad.noise[2].white = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH_AS(bad.validate("gyro"), doctest::Contains("gyro.z"), Error);
   bad = m;
-  bad.noise[0].gauss_markov = GaussMarkov{1.0, 0.0};
+  bad.noise[0].gauss_markov = {GaussMarkov{1.0, 0.0}};
   CHECK_THROWS_AS(bad.validate("accel"), Error);
+}
+
+TEST_CASE("a sum of Gauss-Markov processes: AVARs and PSDs are the sums of the entries'") {
+  // Independent processes: the variance of a sum is the sum of the variances, so every
+  // second-moment quantity adds. The sums here are of 2-3 positive doubles: 1e-15 relative.
+  const GaussMarkov a{1e-4, 0.5}, b{3e-5, 40.0}, c{2e-6, 3000.0};
+  NoiseTerms sum;
+  sum.white = 1e-4;
+  sum.gauss_markov = {a, b, c};
+  const Sampling s{0.01, 0, false};
+  CHECK(has_term(sum, NoiseTerm::gauss_markov));
+  CHECK_FALSE(has_term(NoiseTerms{}, NoiseTerm::gauss_markov));
+  CHECK(only(sum, NoiseTerm::gauss_markov).gauss_markov == sum.gauss_markov);
+  CHECK_FALSE(only(sum, NoiseTerm::gauss_markov).white.has_value());
+  CHECK(only_gauss_markov(sum, 1).gauss_markov == std::vector<GaussMarkov>{b});
+  CHECK_THROWS_AS(only_gauss_markov(sum, 3), Error);
+  NoiseTerms gm_only;
+  gm_only.gauss_markov = {a};
+  CHECK_FALSE(gm_only.empty());
+  for (std::int64_t m : {1, 16, 1024, 65536}) {
+    double each = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each += sampled_avar(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, m, s);
+    SIGMATAU_CHECK_REL(sampled_avar(sum, NoiseTerm::gauss_markov, m, s), each, 1e-15);
+    SIGMATAU_CHECK_REL(sampled_avar(sum, m, s),
+                       each + sampled_avar(sum, NoiseTerm::white, m, s), 1e-15);
+    const double tau = static_cast<double>(m) * 0.01;
+    double each_c = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each_c += continuous_avar(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, tau);
+    SIGMATAU_CHECK_REL(continuous_avar(sum, NoiseTerm::gauss_markov, tau), each_c, 1e-15);
+  }
+  for (double f : {1e-4, 0.01, 1.0, 40.0}) {
+    double each = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      each += two_sided_psd(only_gauss_markov(sum, i), NoiseTerm::gauss_markov, f, 0.01);
+    SIGMATAU_CHECK_REL(two_sided_psd(sum, NoiseTerm::gauss_markov, f, 0.01), each, 1e-15);
+  }
 }

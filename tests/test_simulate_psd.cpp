@@ -131,10 +131,10 @@ std::vector<double> expected_psd(const NoiseTerms& t) {
     r[0] = 2 * q2;
     r[1] = -q2;
   }
-  if (t.gauss_markov) {
-    const double phi = std::exp(-kTau0 / t.gauss_markov->tau_c_s);
+  for (const GaussMarkov& gm : t.gauss_markov) {
+    const double phi = std::exp(-kTau0 / gm.tau_c_s);
     for (std::int64_t l = 0; l < kSegment; ++l)
-      r[l] = t.gauss_markov->sigma * t.gauss_markov->sigma * std::pow(phi, static_cast<double>(l));
+      r[l] += gm.sigma * gm.sigma * std::pow(phi, static_cast<double>(l));
   }
   if (t.bias_instability) {
     const auto unit = flicker_autocovariance(sampling_of(config_of(t, 1)).flicker_taps);
@@ -213,7 +213,7 @@ TEST_CASE("each term's Welch PSD matches its exact expected value at every bin")
   SUBCASE("quantization") { t.quantization = 1e-6; }
   SUBCASE("flicker") { t.bias_instability = 2e-5; }
   SUBCASE("rate random walk") { t.rate_random_walk = 1e-5; }
-  SUBCASE("Gauss-Markov") { t.gauss_markov = GaussMarkov{1e-4, 0.5}; }
+  SUBCASE("Gauss-Markov") { t.gauss_markov = {GaussMarkov{1e-4, 0.5}}; }
   check_term(t);
 }
 
@@ -242,7 +242,7 @@ TEST_CASE("the exact expected Welch PSD is the analytic PSD up to leakage and sa
   quant.quantization = 1e-6;
   flicker.bias_instability = 2e-5;
   rw.rate_random_walk = 1e-5;
-  gm.gauss_markov = GaussMarkov{1e-4, 0.5};
+  gm.gauss_markov = {GaussMarkov{1e-4, 0.5}};
   const std::vector<Case> cases{{"white", white, NoiseTerm::white, 0},
                                 {"quantization", quant, NoiseTerm::quantization, 0},
                                 {"flicker", flicker, NoiseTerm::bias_instability, 1},

@@ -136,7 +136,7 @@ TEST_CASE("a step 40x the white noise: the sidecar's theory matches the log, 3 Q
 TEST_CASE("a step 4x the noise with a drift of 0.3 step per sample and Gauss-Markov noise") {
   NoiseTerms t;
   t.white = 1e-3;  // 1e-4 rad per sample
-  t.gauss_markov = GaussMarkov{2e-3, 0.05};
+  t.gauss_markov = {GaussMarkov{2e-3, 0.05}};
   const double step = 4e-4;
   check_against_sidecar(t, step, Eigen::Vector3d::Constant(0.3 * step / kTau0));
 }

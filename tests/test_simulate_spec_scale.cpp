@@ -27,7 +27,7 @@ SheetNoise every_term() {
     t.bias_instability = 3e-6 * (a + 1);
     t.rate_random_walk = 2e-7 * (a + 1);
     t.rate_ramp = 1e-9 * (a + 1);
-    t.gauss_markov = GaussMarkov{5e-6, 100.0};
+    t.gauss_markov = {GaussMarkov{5e-6, 100.0}};
   }
   noise.read = {"noise density read as N"};
   noise.left_out = {"rate random walk"};
@@ -52,7 +52,7 @@ TEST_CASE("scale_sheet_noise multiplies every sheet term on every axis by the fa
     CHECK(*s.rate_random_walk == *b.rate_random_walk * scale);
     CHECK(*s.rate_ramp == *b.rate_ramp * scale);
     // Not a sheet term: left as it is.
-    CHECK(s.gauss_markov->sigma == b.gauss_markov->sigma);
+    CHECK(s.gauss_markov.at(0).sigma == b.gauss_markov.at(0).sigma);
   }
   // What the sheet prints and leaves out does not change with the factor.
   CHECK(after.read == before.read);

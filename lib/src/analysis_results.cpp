@@ -77,7 +77,16 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   for (const auto& p : fit.parameters) {
     const std::string key(term_symbol(p.term));
     json entry = {{"unit", std::string(si_unit(p.term, sensor))}};
-    if (p.in_model) {
+    if (p.from_model_floor) {
+      // Added terms: B read from the model's ADEV floor (the flicker coefficient beside it).
+      entry["value"] = p.value;
+      entry["ci_low"] = p.ci_low;
+      entry["ci_high"] = p.ci_high;
+      entry["from_model_floor"] = true;
+      if (std::isfinite(p.flicker)) entry["flicker"] = p.flicker;
+      if (std::isfinite(p.tau_min_s)) entry["tau_min_s"] = p.tau_min_s;
+      if (std::isfinite(p.adev_min)) entry["adev_min"] = p.adev_min;
+    } else if (p.in_model) {
       entry["value"] = p.value;
       entry["ci_low"] = p.ci_low;
       entry["ci_high"] = p.ci_high;
@@ -90,6 +99,13 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
     }
     parameters[key] = entry;
   }
+  json gauss_markov = json::array();
+  for (const auto& g : fit.gauss_markov) {
+    gauss_markov.push_back({{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
+                            {"tau_c_s", g.tau_c_s}, {"edf", number_or_null(g.edf)},
+                            {"leading_points", g.leading_points},
+                            {"unit", std::string(si_unit(NoiseTerm::gauss_markov, sensor))}});
+  }
   // The fitted model and each term's IEEE asymptote on a log grid over the curve's taus.
   const NoiseTerms terms = fit.noise_terms();
   std::vector<double> taus, total;
@@ -101,27 +117,57 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   }
   json readouts = json::array();
   for (NoiseTerm term : fit.model_terms) {
+    // Gauss-Markov and sinusoid have no IEEE line (read_off): drawn as curves below.
+    if (term == NoiseTerm::gauss_markov || term == NoiseTerm::sinusoid) continue;
     const auto& p = fit.parameter(term);
     std::vector<double> line;
-    for (double tau : taus) line.push_back(adev_line(term, p.value, tau));
+    // B's line is the flicker term's own (its floor 0.664 B): the flicker coefficient when the
+    // reported value is the model's floor.
+    const double value = p.from_model_floor ? p.flicker : p.value;
+    for (double tau : taus) line.push_back(adev_line(term, value, tau));
     per_term[std::string(term_symbol(term))] = line;
     const ReadOff r = read_off(term);
     double tau_read = r.tau_read_s;
     if (term == NoiseTerm::bias_instability && std::isfinite(p.tau_min_s) && p.tau_min_s > 0) tau_read = p.tau_min_s;
     if (tau_read >= tau_lo && tau_read <= tau_hi) {
       readouts.push_back({{"term", std::string(term_symbol(term))}, {"tau", tau_read},
-                          {"adev", adev_line(term, p.value, tau_read)}});
+                          {"adev", adev_line(term, value, tau_read)}});
     }
+  }
+  // One curve per Gauss-Markov entry ("GM1", "GM2", ...): its exact continuous ADEV, a bump
+  // with no straight-line asymptote to draw.
+  for (std::size_t i = 0; i < terms.gauss_markov.size(); ++i) {
+    const NoiseTerms one = only_gauss_markov(terms, i);
+    std::vector<double> curve;
+    for (double tau : taus) curve.push_back(std::sqrt(continuous_avar(one, tau)));
+    per_term["GM" + std::to_string(i + 1)] = curve;
+  }
+  json sinusoid = nullptr;
+  if (fit.sinusoid) {
+    const auto& e = *fit.sinusoid;
+    sinusoid = {{"amplitude", e.amplitude}, {"ci_low", e.ci_low}, {"ci_high", e.ci_high},
+                {"frequency_hz", e.frequency_hz}, {"edf", number_or_null(e.edf)},
+                {"leading_points", e.leading_points},
+                {"unit", std::string(si_unit(NoiseTerm::sinusoid, sensor))}};
+    NoiseTerms one;
+    one.sinusoid = Sinusoid{e.amplitude, e.frequency_hz, 0.0};
+    std::vector<double> line;
+    for (double tau : taus) line.push_back(std::sqrt(continuous_avar(one, NoiseTerm::sinusoid, tau)));
+    per_term["SIN"] = line;
   }
   return {{"name", name},
           {"quantity", sensor == Sensor::gyro ? "angular_rate" : "specific_force"},
+          {"sinusoid", sinusoid},
           {"model_terms", model_terms},
           {"parameters", parameters},
+          {"gauss_markov", gauss_markov},
           {"method", std::string(to_string(fit.method))},
           {"chi_squared", number_or_null(fit.chi_squared)},
           {"bic", number_or_null(fit.bic)},
           {"dof", fit.dof},
           {"p_value", number_or_null(fit.p_value)},
+          {"model_error", fit.model_error},
+          {"left_out_taus_s", fit.left_out_taus_s},
           {"misfit_tau_s", number_or_null(fit.misfit_tau_s)},
           {"misfit_at_shortest_taus", fit.misfit_at_shortest_taus},
           {"model_adev", {{"tau", taus}, {"adev", total}}},
@@ -318,6 +364,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
     fit_options.confidence_level = options.confidence;
     fit_options.tau_min_s = options.fit_tau_min_s;
     fit_options.tau_max_s = options.fit_tau_max_s;
+    fit_options.added_terms = options.fit_added_terms;
     CurveSource source;
     source.tau0_s = 1.0 / rate_hz;
     // Split: the segments' samples counted as one record (the fit's OAVAR covariance assumes
@@ -333,6 +380,7 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const bool readings = fit.readings.has_value();
       const Sensor sensor = channel.role->sensor;
       if (const std::string w = misfit_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
+      if (const std::string w = left_out_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       if (const std::string w = short_log_warning(joint, channel.name); !w.empty()) warnings.push_back(w);
       if (const std::string w = readings_warning(fit, channel.name, sensor); !w.empty()) warnings.push_back(w);
       if (c < results["channels"].size()) {
@@ -373,7 +421,8 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const std::size_t first_measured = measured.size();
       for (const auto& [term, quantity] : kMeasured) {
         const auto& p = reported.parameter(term);
-        if (p.in_model) {
+        // B read from the model's floor (added terms standing in for flicker) is measured too.
+        if (p.in_model || p.from_model_floor) {
           measured.push_back({sensor, quantity, axis, p.value, p.ci_low, p.ci_high});
         } else {
           // Left out by the fit: still checked against the sheet, by its upper bound.

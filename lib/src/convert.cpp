@@ -124,6 +124,79 @@ std::string bound_text(const TriadNoise& triad, BiasSource source) {
   return term + " on " + axes + ": not detected, its " + level + "upper bound used";
 }
 
+/// sum over the entries of 2 sigma_i^2 / T_c_i: the short-term (tau << T_c) random-walk K^2 of
+/// a sum of independent Gauss-Markov processes.
+double gauss_markov_random_walk_k2(const std::vector<GaussMarkov>& gms) {
+  double k2 = 0;
+  for (const GaussMarkov& gm : gms) k2 += 2 * gm.sigma * gm.sigma / gm.tau_c_s;
+  return k2;
+}
+
+/// The entry a one-state Gauss-Markov bias carries: the largest sigma, i.e. the largest ADEV
+/// peak 0.6174 sigma (the bump that sets the curve's bias-stability region); a tie goes to the
+/// longer T_c (the slower drift the bias state is there to track).
+std::size_t dominant_gauss_markov(const std::vector<GaussMarkov>& gms) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < gms.size(); ++i) {
+    if (gms[i].sigma > gms[best].sigma ||
+        (gms[i].sigma == gms[best].sigma && gms[i].tau_c_s > gms[best].tau_c_s))
+      best = i;
+  }
+  return best;
+}
+
+/// "sigma 1e-4 rad/s, T_c 100 s; sigma 3e-5 rad/s, T_c 2000 s"
+std::string gauss_markov_list(const std::vector<GaussMarkov>& gms, const std::string& unit) {
+  std::string out;
+  for (const GaussMarkov& gm : gms)
+    out += (out.empty() ? "" : "; ") + std::string("sigma ") + num(gm.sigma) + " " + unit +
+           ", T_c " + num(gm.tau_c_s) + " s";
+  return out;
+}
+
+/// TriadDiscrete::gauss_markov_note for a bias from Gauss-Markov entries ("" when every axis
+/// has one entry). Axes with the same entries share one sentence.
+std::string gauss_markov_sum_note(const TriadNoise& triad, BiasModel model) {
+  const std::string sensor(to_string(triad.sensor));
+  const std::string u = rate_unit(triad.sensor);
+  std::string note;
+  for (int i = 0; i < 3; ++i) {
+    const auto& gms = triad.axes[static_cast<std::size_t>(i)].gauss_markov;
+    if (gms.size() < 2) continue;
+    bool seen = false;
+    for (int j = 0; j < i; ++j)
+      seen = seen || triad.axes[static_cast<std::size_t>(j)].gauss_markov == gms;
+    if (seen) continue;
+    std::string axes;
+    for (int j = i; j < 3; ++j)
+      if (triad.axes[static_cast<std::size_t>(j)].gauss_markov == gms)
+        axes += std::string(axes.empty() ? "" : ",") + static_cast<char>('x' + j);
+    std::string text = sensor + " bias on " + axes + ": a sum of " + std::to_string(gms.size()) +
+                       " Gauss-Markov processes (" + gauss_markov_list(gms, u) + "); ";
+    if (model == BiasModel::gauss_markov) {
+      const std::size_t d = dominant_gauss_markov(gms);
+      double left_out = 0, total = 0;
+      for (std::size_t e = 0; e < gms.size(); ++e) {
+        total += gms[e].sigma * gms[e].sigma;
+        if (e != d) left_out += gms[e].sigma * gms[e].sigma;
+      }
+      char share[32];
+      std::snprintf(share, sizeof share, "%.3g", 100 * left_out / total);
+      text += "one filter bias state carries one process: the entry with the largest sigma "
+              "(largest ADEV peak 0.6174 sigma at 1.892 T_c) is written (sigma " +
+              num(gms[d].sigma) + " " + u + ", T_c " + num(gms[d].tau_c_s) +
+              " s); the others are left out (" + share +
+              " % of the stationary bias variance): add a state per process to carry them";
+    } else {
+      text += "the random walk written has K^2 = sum 2 sigma_i^2/T_c_i (the entries' short-term "
+              "slopes add), which holds for tau well below the shortest T_c and overstates the "
+              "drift beyond it";
+    }
+    note += (note.empty() ? "" : "; ") + text;
+  }
+  return note;
+}
+
 }  // namespace
 
 std::string_view to_string(DensityConvention convention) {
@@ -186,10 +259,10 @@ void replace_with_typed_terms(std::vector<TriadNoise>& triads, Sensor sensor,
   if (typed.bias_instability || typed.rate_random_walk) {
     bool had = false;
     for (auto& a : t.axes) {
-      had = had || a.bias_instability || a.rate_random_walk || a.gauss_markov;
+      had = had || a.bias_instability || a.rate_random_walk || !a.gauss_markov.empty();
       a.bias_instability = typed.bias_instability;
       a.rate_random_walk = typed.rate_random_walk;
-      a.gauss_markov.reset();
+      a.gauss_markov.clear();
     }
     // The fit's upper bounds stood in for terms it did not detect: the typed terms replace them.
     t.bias_from_upper_bound = false;
@@ -300,9 +373,9 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
   if (options.bias_model == BiasModel::random_walk) {
     if (a0.rate_random_walk) source = BiasSource::rate_random_walk;
     else if (a0.bias_instability) source = BiasSource::bias_stability;
-    else if (a0.gauss_markov) source = BiasSource::gauss_markov;
+    else if (!a0.gauss_markov.empty()) source = BiasSource::gauss_markov;
   } else {
-    if (a0.gauss_markov) source = BiasSource::gauss_markov;
+    if (!a0.gauss_markov.empty()) source = BiasSource::gauss_markov;
     else if (a0.bias_instability) source = BiasSource::bias_stability;
     else if (a0.rate_random_walk) {
       throw Error(sensor + ": a Gauss-Markov bias needs a bias stability (or sigma and T_c); "
@@ -353,9 +426,11 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
           k = kFlickerFloorFactor * *t.bias_instability / std::sqrt(options.t_ref_s);
           b.t_ref_s = options.t_ref_s;
         } else {
-          if (!t.gauss_markov) missing("Gauss-Markov {sigma, T_c}");
-          // Short-term slope of a GM: K = q_c = sqrt(2 sigma^2 / T_c) (THEORY.md section 2).
-          k = t.gauss_markov->sigma * std::sqrt(2.0 / t.gauss_markov->tau_c_s);
+          if (t.gauss_markov.empty()) missing("Gauss-Markov {sigma, T_c}");
+          // Short-term slope of a GM: K = q_c = sqrt(2 sigma^2 / T_c) (THEORY.md section 2):
+          // for tau << T_c its AVAR is 2 sigma^2 tau / (3 T_c) = K^2 tau / 3. Independent
+          // processes' AVARs add, so a sum's short-term K^2 is the sum of the entries' K^2.
+          k = std::sqrt(gauss_markov_random_walk_k2(t.gauss_markov));
         }
         k *= f;
         b.random_walk_density(i) = k;
@@ -363,9 +438,11 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
       } else {
         double sigma = 0, tau_c = 0;
         if (*source == BiasSource::gauss_markov) {
-          if (!t.gauss_markov) missing("Gauss-Markov {sigma, T_c}");
-          sigma = t.gauss_markov->sigma;
-          tau_c = t.gauss_markov->tau_c_s;
+          if (t.gauss_markov.empty()) missing("Gauss-Markov {sigma, T_c}");
+          // One filter state carries one process: the dominant entry (dominant_gauss_markov).
+          const GaussMarkov& gm = t.gauss_markov[dominant_gauss_markov(t.gauss_markov)];
+          sigma = gm.sigma;
+          tau_c = gm.tau_c_s;
         } else {
           if (!t.bias_instability) missing("bias instability B");
           const double tau_min = tau_min_of(i);
@@ -398,6 +475,8 @@ TriadDiscrete discretize(const TriadNoise& triad, const ConvertOptions& options)
         b.tau_min_origin = "T_ref (convert --tref): no tau of the ADEV minimum measured or given";
       }
     }
+    if (*source == BiasSource::gauss_markov)
+      out.gauss_markov_note = gauss_markov_sum_note(triad, options.bias_model);
     b.q = scaled(b.sigma_per_step, triad.bias_correlation);
     if (b.model == BiasModel::random_walk && b.source == BiasSource::bias_stability &&
         triad.rate_random_walk_bound && *triad.rate_random_walk_bound > 0) {
@@ -473,11 +552,16 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
             << in_deg(s, bds * 3600, "deg/h") << " after T_ref = " << num(b.t_ref_s) << " s\n"
             << p << "K = B_ds / sqrt(T_ref) = " << num(bds) << " / sqrt(" << num(b.t_ref_s)
             << ") = " << num(bds / std::sqrt(b.t_ref_s)) << " " << rw_unit(s) << "\n";
-        } else {
+        } else if (t.gauss_markov.size() == 1) {
           o << p << "random walk with the short-term slope of the GM (sigma = "
-            << num(t.gauss_markov->sigma) << " " << u << ", T_c = "
-            << num(t.gauss_markov->tau_c_s) << " s): K = sigma sqrt(2/T_c) = "
+            << num(t.gauss_markov[0].sigma) << " " << u << ", T_c = "
+            << num(t.gauss_markov[0].tau_c_s) << " s): K = sigma sqrt(2/T_c) = "
             << num(b.random_walk_density(i) / f) << " " << rw_unit(s) << "\n";
+        } else {
+          o << p << "random walk with the short-term slope of the sum of "
+            << t.gauss_markov.size() << " GMs (" << gauss_markov_list(t.gauss_markov, u)
+            << "): K = sqrt(sum 2 sigma_i^2/T_c_i) = " << num(b.random_walk_density(i) / f)
+            << " " << rw_unit(s) << "\n";
         }
         if (f != 1) o << p << "x F: K = " << num(b.random_walk_density(i)) << "\n";
         o << p << "Q_bb = K^2 T_s = (" << num(b.random_walk_density(i)) << ")^2 x " << num(ts)
@@ -493,6 +577,11 @@ std::string explain(const TriadNoise& triad, const TriadDiscrete& r,
             << p << "sigma = B_ds / 0.6174 = " << num(b.sigma(i) / f) << " " << u
             << ", T_c = tau_min / 1.892 = " << num(b.tau_c_s(i)) << " s\n";
         } else {
+          if (t.gauss_markov.size() > 1)
+            o << p << "Gauss-Markov sum of " << t.gauss_markov.size() << " ("
+              << gauss_markov_list(t.gauss_markov, u)
+              << "): one filter state, the entry with the largest sigma (largest ADEV peak "
+                 "0.6174 sigma) is used\n";
           o << p << "Gauss-Markov sigma = " << num(b.sigma(i) / f) << " " << u
             << ", T_c = " << num(b.tau_c_s(i)) << " s\n";
         }
@@ -554,6 +643,7 @@ DiscreteNoise convert_noise(const std::vector<TriadNoise>& triads, const Convert
     if (slot) throw Error("two " + std::string(to_string(t.sensor)) + " triads to convert");
     slot = discretize(t, options);
     check_finite(*slot, options, out.source);  // every exporter writes from these numbers
+    if (!slot->gauss_markov_note.empty()) out.notes.push_back(slot->gauss_markov_note);
     out.explain += explain(t, *slot, options);
   }
   return out;

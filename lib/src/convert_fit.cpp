@@ -340,7 +340,8 @@ DiscreteNoise convert_fit(const FitForFilter& fit, const ConvertOptions& options
                           std::string source) {
   DiscreteNoise noise = convert_noise(fit.triads, options, std::move(source));
   noise.warnings = fit.warnings;
-  noise.notes = fit.notes;
+  // The fit's notes first, then convert_noise's own (a Gauss-Markov sum's note).
+  noise.notes.insert(noise.notes.begin(), fit.notes.begin(), fit.notes.end());
   if (fit.log_rate_hz) noise.rate_note = rate_above_log_note(options.rate_hz, *fit.log_rate_hz);
   return noise;
 }

@@ -28,6 +28,8 @@ int term_index(NoiseTerm term) {
 }  // namespace detail
 
 std::string_view term_symbol(NoiseTerm term) {
+  if (term == NoiseTerm::gauss_markov) return "GM";
+  if (term == NoiseTerm::sinusoid) return "SIN";
   static constexpr std::string_view kSymbols[] = {"Q", "N", "B", "K", "R"};
   return kSymbols[detail::term_index(term)];
 }
@@ -87,12 +89,16 @@ NoiseTerms ChannelFit::noise_terms() const {
     switch (p.term) {
       case NoiseTerm::quantization: t.quantization = p.value; break;
       case NoiseTerm::white: t.white = p.value; break;
-      case NoiseTerm::bias_instability: t.bias_instability = p.value; break;
+      case NoiseTerm::bias_instability:
+        t.bias_instability = p.from_model_floor ? p.flicker : p.value;
+        break;
       case NoiseTerm::rate_random_walk: t.rate_random_walk = p.value; break;
       case NoiseTerm::rate_ramp: t.rate_ramp = p.value; break;
       default: break;
     }
   }
+  for (const auto& g : gauss_markov) t.gauss_markov.push_back(GaussMarkov{g.sigma, g.tau_c_s});
+  if (sinusoid) t.sinusoid = Sinusoid{sinusoid->amplitude, sinusoid->frequency_hz, 0.0};
   return t;
 }
 
@@ -115,6 +121,40 @@ double fit_unit(const AllanCurve& curve) {
   return detail::value_scale_for(largest, kFitUnscaledMin, kFitUnscaledMax);
 }
 
+/// The shortest-tau points a sensor's own filter bends (fit_noise). When the joint fit is
+/// rejected and the point furthest from it in standard deviations is among the shortest fifth
+/// of the taus, the
+/// fit is repeated without the k shortest points, k = 1 .. a fifth of the points (at least 80 %
+/// of the taus stay fitted), and the k whose relative model error (ChannelFit::model_error) is
+/// smallest is kept if it is below kLeaveOutGain times the error with all points: leaving a
+/// point out must describe the rest clearly better, not just drop a point. `fit` becomes the
+/// fit of the points kept, which are returned.
+constexpr double kLeaveOutGain = 0.8;
+
+std::vector<detail::AvarPoint> leave_out_filtered_taus(ChannelFit& fit, const std::vector<detail::AvarPoint>& points,
+                                                       const CurveSource& source, const FitOptions& options) {
+  const std::size_t most = points.size() / 5;
+  if (most == 0 || !(fit.p_value < kMisfitPValue) || !(fit.model_error > 0)) return points;
+  // The point furthest from the model in its own standard deviations (ChannelFit::misfit_tau_s).
+  if (!(fit.misfit_tau_s <= points[most - 1].tau_s * (1 + 1e-9))) return points;
+  std::size_t best_k = 0;
+  double best_error = fit.model_error;
+  std::optional<ChannelFit> best_fit;
+  for (std::size_t k = 1; k <= most && points.size() - k >= static_cast<std::size_t>(kMinFitPoints); ++k) {
+    const std::vector<detail::AvarPoint> fewer(points.begin() + static_cast<std::ptrdiff_t>(k), points.end());
+    ChannelFit next = detail::fit_joint(fewer, source, options);
+    if (next.model_error < kLeaveOutGain * best_error) {
+      best_k = k;
+      best_error = next.model_error;
+      best_fit = std::move(next);
+    }
+  }
+  if (best_k == 0) return points;
+  fit = std::move(*best_fit);
+  for (std::size_t k = 0; k < best_k; ++k) fit.left_out_taus_s.push_back(points[k].tau_s);
+  return {points.begin() + static_cast<std::ptrdiff_t>(best_k), points.end()};
+}
+
 void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
   if (!fit) return;
   for (ParameterEstimate& p : fit->parameters) {
@@ -123,6 +163,17 @@ void multiply_terms(std::optional<ChannelFit>& fit, double unit) {
     p.ci_high *= unit;
     p.upper_bound *= unit;
     p.adev_min *= unit;
+    p.flicker *= unit;
+  }
+  for (GaussMarkovEstimate& g : fit->gauss_markov) {
+    g.sigma *= unit;
+    g.ci_low *= unit;
+    g.ci_high *= unit;
+  }
+  if (fit->sinusoid) {
+    fit->sinusoid->amplitude *= unit;
+    fit->sinusoid->ci_low *= unit;
+    fit->sinusoid->ci_high *= unit;
   }
   for (Contradiction& c : fit->contradictions) {  // deviations, as the terms
     c.reported *= unit;
@@ -206,14 +257,26 @@ NoiseFit fit_noise(const AllanCurve& curve, const CurveSource& source, const Fit
     if (points[j].dev < points[j_min].dev) j_min = j;
   }
   NoiseFit fit;
-  if (options.method != FitMethod::slopes) fit.joint = detail::fit_joint(points, source, options);
+  // The points the joint fit describes: all, or all but the shortest taus a sensor's own
+  // filter bends away from every noise term (leave_out_filtered_taus).
+  std::vector<detail::AvarPoint> joint_points = points;
+  if (options.method != FitMethod::slopes) {
+    fit.joint = detail::fit_joint(points, source, options);
+    if (options.terms.empty() && options.added_terms) {
+      joint_points = leave_out_filtered_taus(*fit.joint, points, source, options);
+    }
+  }
   if (options.method != FitMethod::joint) {
     fit.slopes = detail::fit_slopes(points, source, options, j_min);
   }
   // A joint fit that is rejected or contradicts its curve is kept, but the curve's own
   // read-outs stand in for it in what is reported (NoiseFit::reported).
   if (fit.joint) {
-    fit.joint->contradictions = detail::check_against_curve(*fit.joint, points, j_min, source);
+    std::size_t j_min_joint = 0;
+    for (std::size_t j = 1; j < joint_points.size(); ++j) {
+      if (joint_points[j].dev < joint_points[j_min_joint].dev) j_min_joint = j;
+    }
+    fit.joint->contradictions = detail::check_against_curve(*fit.joint, joint_points, j_min_joint, source);
     const bool rejected = fit.joint->p_value < kMisfitPValue;
     if (rejected || !fit.joint->contradictions.empty()) {
       fit.readings = detail::fit_slopes(points, source, options, j_min);
@@ -250,17 +313,22 @@ const ChannelFit& NoiseFit::reported() const {
 std::vector<double> model_deviation(const ChannelFit& fit, const AllanCurve& curve,
                                     const CurveSource& source, const FitOptions& options) {
   const Sampling sampling{source.tau0_s, source.flicker_taps, false};
-  const NoiseTerms model = fit.noise_terms();
+  const NoiseTerms model = fit.noise_terms();  // added terms included
   std::vector<double> out;
   out.reserve(curve.points.size());
   for (const auto& p : curve.points) {
     // The same selection as fit_noise's.
     const double tau = static_cast<double>(p.value.m) * source.tau0_s;
+    const bool left_out = std::any_of(fit.left_out_taus_s.begin(), fit.left_out_taus_s.end(),
+                                      [&](double t) { return std::abs(t - tau) <= 1e-9 * tau; });
     const bool used = p.value.dev > 0 && std::isfinite(p.value.dev) && p.value.m >= 1 &&
-                      source.n_phase_points - 2 * p.value.m >= 1 &&
+                      source.n_phase_points - 2 * p.value.m >= 1 && !left_out &&
                       tau >= options.tau_min_s * (1 - 1e-9) && tau <= options.tau_max_s * (1 + 1e-9);
-    out.push_back(used ? std::sqrt(sampled_avar(model, p.value.m, sampling))
-                       : std::numeric_limits<double>::quiet_NaN());
+    if (!used) {
+      out.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    out.push_back(std::sqrt(sampled_avar(model, p.value.m, sampling)));
   }
   return out;
 }
@@ -286,6 +354,19 @@ std::string misfit_warning(const ChannelFit& fit, const std::string& channel) {
                       "outliers, a temperature drift) shapes the curve there: look at the plot, "
                       "and fit a tau range without it (--tau-min / --tau-max)");
   return text;
+}
+
+std::string left_out_warning(const ChannelFit& fit, const std::string& channel) {
+  if (fit.left_out_taus_s.empty()) return "";
+  std::string taus;
+  for (const double t : fit.left_out_taus_s) {
+    char one[40];
+    std::snprintf(one, sizeof one, "%s%.4g", taus.empty() ? "" : ", ", t);
+    taus += one;
+  }
+  return channel + ": the joint fit leaves out the shortest taus (" + taus +
+         " s): the sensor's own filter (or its sampling) bends them away from every noise term, "
+         "and the model describes the other taus better without them";
 }
 
 std::string readings_warning(const NoiseFit& fit, const std::string& channel, Sensor sensor) {

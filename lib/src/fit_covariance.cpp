@@ -74,6 +74,29 @@ double kurtosis_overlap(std::int64_t ma, std::int64_t mb, std::int64_t big_n) {
   return sum;
 }
 
+/// Most pairs of factors whose lag sums a process keeps (~0.5 KB each with three GM terms).
+constexpr std::size_t kPairCacheSize = 20000;
+
+/// covariance_lag_sums of one pair, cached by (m_a, m_b, N, tau0, GM rates): the noise fit's
+/// search for added terms (fit_added_terms.cpp), its refit without the filtered taus and its
+/// guards build bases that share most pairs (the basis took 80 % of a real log's fit).
+LagSums cached_lag_sums(std::int64_t ma, std::int64_t mb, double tau0_s, const std::vector<double>& rates,
+                        std::int64_t n_phase_points) {
+  using Key = std::tuple<std::int64_t, std::int64_t, std::int64_t, double, std::vector<double>>;
+  static std::mutex mutex;
+  static std::map<Key, LagSums> cache;
+  Key key{ma, mb, n_phase_points, tau0_s, rates};
+  {
+    std::lock_guard lock(mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  LagSums sums = covariance_lag_sums(PairCorrelation(ma, mb, tau0_s, rates), n_phase_points);
+  std::lock_guard lock(mutex);
+  if (cache.size() >= kPairCacheSize) cache.clear();
+  cache.emplace(std::move(key), sums);
+  return sums;
+}
+
 }  // namespace
 
 std::size_t CovarianceBasis::pair_index(std::size_t a, std::size_t b) const {
@@ -95,7 +118,7 @@ Eigen::MatrixXd CovarianceBasis::covariance(const Eigen::VectorXd& theta) const 
 }
 
 CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t n_phase_points,
-                                       double tau0_s, std::optional<double> gm_tau_c_s) {
+                                       double tau0_s, std::span<const double> gm_tau_c_s) {
   if (!(tau0_s > 0) || !std::isfinite(tau0_s)) throw Error("covariance: tau0 must be > 0 s");
   for (const auto mi : m) {
     if (!(mi >= 1) || !(n_phase_points - 2 * mi >= 1)) {
@@ -107,24 +130,27 @@ CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t
   basis.m = std::move(m);
   basis.n_phase_points = n_phase_points;
   basis.tau0_s = tau0_s;
-  const bool gm = gm_tau_c_s.has_value();
-  basis.terms = kTermCount + (gm ? 1 : 0);
+  for (const double tc : gm_tau_c_s) {
+    if (!(tc > 0) || !std::isfinite(tc)) throw Error("covariance: Gauss-Markov tau_c must be > 0 s");
+  }
+  basis.terms = kTermCount + static_cast<int>(gm_tau_c_s.size());
   const std::size_t taus = basis.m.size();
   basis.h.assign(taus * (taus + 1) / 2, Eigen::MatrixXd::Zero(basis.terms, basis.terms));
 
   // Stochastic terms (ramp excluded): indices into theta.
   std::vector<int> stochastic{0, 1, 2, 3};
-  if (gm) stochastic.push_back(kTermCount);
+  std::vector<double> gm_rates;
+  for (std::size_t g = 0; g < gm_tau_c_s.size(); ++g) {
+    stochastic.push_back(kTermCount + static_cast<int>(g));
+    gm_rates.push_back(tau0_s / gm_tau_c_s[g]);
+  }
   constexpr int kRamp = 4;
   const std::size_t ns = stochastic.size();
 
-  const std::optional<double> gm_rate =
-      gm ? std::optional<double>(tau0_s / *gm_tau_c_s) : std::nullopt;
   for (std::size_t b = 0; b < taus; ++b) {
     for (std::size_t a = 0; a <= b; ++a) {
       const std::int64_t ma = basis.m[a], mb = basis.m[b];
-      const LagSums sums =
-          covariance_lag_sums(PairCorrelation(ma, mb, tau0_s, gm_rate), n_phase_points);
+      const LagSums sums = cached_lag_sums(ma, mb, tau0_s, gm_rates, n_phase_points);
       const double nn = static_cast<double>(n_phase_points - 2 * ma) *
                         static_cast<double>(n_phase_points - 2 * mb);
       Eigen::MatrixXd& h = basis.h[basis.pair_index(a, b)];
@@ -169,7 +195,7 @@ std::shared_ptr<const CovarianceBasis> covariance_basis(const std::vector<std::i
     if (auto it = cache.find(key); it != cache.end()) return it->second;
   }
   auto basis = std::make_shared<const CovarianceBasis>(
-      build_covariance_basis(m, n_phase_points, tau0_s, std::nullopt));
+      build_covariance_basis(m, n_phase_points, tau0_s, {}));
   std::lock_guard lock(mutex);
   if (cache.size() >= kCacheSize) cache.clear();
   cache.emplace(std::move(key), basis);
@@ -182,8 +208,8 @@ namespace sigmatau {
 
 Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::int64_t> m,
                                  std::int64_t n_phase_points, double tau0_s) {
-  std::optional<double> tau_c;
-  if (terms.gauss_markov) tau_c = terms.gauss_markov->tau_c_s;
+  std::vector<double> tau_c;
+  for (const auto& g : terms.gauss_markov) tau_c.push_back(g.tau_c_s);
   const auto basis = detail::build_covariance_basis(std::vector<std::int64_t>(m.begin(), m.end()),
                                                     n_phase_points, tau0_s, tau_c);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(basis.terms);
@@ -193,7 +219,9 @@ Eigen::MatrixXd oavar_covariance(const NoiseTerms& terms, std::span<const std::i
   theta(2) = sq(terms.bias_instability);
   theta(3) = sq(terms.rate_random_walk);
   theta(4) = sq(terms.rate_ramp);
-  if (tau_c) theta(detail::kTermCount) = terms.gauss_markov->sigma * terms.gauss_markov->sigma;
+  for (std::size_t g = 0; g < tau_c.size(); ++g) {
+    theta(detail::kTermCount + static_cast<Eigen::Index>(g)) = terms.gauss_markov[g].sigma * terms.gauss_markov[g].sigma;
+  }
   return basis.covariance(theta);
 }
 

@@ -31,8 +31,10 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "fit_covariance_lags.hpp"
+#include "sigmatau/error.hpp"
 
 namespace sigmatau::detail {
 namespace {
@@ -184,24 +186,30 @@ double flicker_phase_covariance(double l) {
 }
 
 PairCorrelation::PairCorrelation(std::int64_t ma, std::int64_t mb, double tau0_s,
-                                 std::optional<double> gm_rate)
-    : ma_(ma), mb_(mb), tau0_s_(tau0_s), gm_(gm_rate) {
-  if (gm_) {
-    const double a = *gm_;
+                                 std::span<const double> gm_rates)
+    : ma_(ma), mb_(mb), tau0_s_(tau0_s) {
+  if (gm_rates.size() > kMaxLagGaussMarkov) {
+    throw Error("covariance: at most " + std::to_string(kMaxLagGaussMarkov) +
+                " Gauss-Markov terms are modelled");
+  }
+  for (const double a : gm_rates) {
+    GaussMarkovPair g;
+    g.rate = a;
     const double p1 = -std::expm1(-a) / a;
     const double phi = std::exp(-a);
-    gm_scale_ = phi / (p1 * p1);
-    gm_linear_ = p2(a, false);
+    g.scale = phi / (p1 * p1);
+    g.linear = p2(a, false);
     // Far field: -phi / (1 - phi)^2 (1 - e^-a m_a)^2 (1 - e^-a m_b)^2 / (m_a m_b), times
     // e^-a(|u| - m_a - m_b).
     const double ea = -std::expm1(-a * static_cast<double>(ma));
     const double eb = -std::expm1(-a * static_cast<double>(mb));
     const double one_minus_phi = -std::expm1(-a);
-    gm_far_ = -phi / (one_minus_phi * one_minus_phi) * ea * ea * eb * eb /
-              (static_cast<double>(ma) * static_cast<double>(mb));
+    g.far = -phi / (one_minus_phi * one_minus_phi) * ea * ea * eb * eb /
+            (static_cast<double>(ma) * static_cast<double>(mb));
     // Inner second difference at |y| >= m_s: -scale e^-a(|y| - m_s) (1 - e^-a m_s)^2 / a^2.
     const double es = std::min(ea, eb);
-    gm_inner_ = -gm_scale_ * es * es / (a * a);
+    g.inner = -g.scale * es * es / (a * a);
+    gm_.push_back(g);
   }
 }
 
@@ -216,16 +224,20 @@ void PairCorrelation::evaluate(double lag, std::span<double> c) const {
   const double ms = a_small ? ma : mb;
   const bool inside = u < span;
   const bool flicker_near = u < kFlickerFarRatio * span;
+  const std::size_t n_gm = gm_.size();
   // Gauss-Markov: one representation of G for the whole evaluation (p2 - 1/2 while every
   // |d| a < 1, else p2); they differ by scale l^2 / 2, which only cancels when used throughout.
-  const bool gm_minus_half = gm_ && (u + span) * *gm_ < kSeriesBelow;
-  double q = 0, n = 0, k = 0, b = 0, gm = 0;
+  std::array<bool, kMaxLagGaussMarkov> gm_minus_half{};
+  std::array<double, kMaxLagGaussMarkov> gm{};
+  for (std::size_t g = 0; g < n_gm; ++g) gm_minus_half[g] = (u + span) * gm_[g].rate < kSeriesBelow;
+  double q = 0, n = 0, k = 0, b = 0;
   for (int o = 0; o < 3; ++o) {
     const double go = kG[static_cast<std::size_t>(o)];
     const double y = a_small ? lag + o * mb - ma : lag - o * ma + mb;
     const double ay = std::abs(y);
     const bool near = ay < ms;
-    double dq = 0, dn = 0, dk = 0, db = 0, dgm = 0;
+    double dq = 0, dn = 0, dk = 0, db = 0;
+    std::array<double, kMaxLagGaussMarkov> dgm{};
     const bool b_series = ay >= std::max(kFlickerInnerRatio * ms, kFlickerSeriesFloor);
     for (int i = 0; i < 3; ++i) {
       const double gi = kG[static_cast<std::size_t>(i)];
@@ -234,17 +246,19 @@ void PairCorrelation::evaluate(double lag, std::span<double> c) const {
       if (inside && near) {
         dn += gi * d;
         dk += gi * (d * d * d - d);
+        for (std::size_t g = 0; g < n_gm; ++g) {
+          const GaussMarkovPair& p = gm_[g];
+          const double quad = d * d * p2(d * p.rate, gm_minus_half[g]);
+          dgm[g] += gi * (-d / 2 - p.scale * (quad - d * p.linear));
+        }
       }
       if (flicker_near && !b_series) db += gi * flicker_phase_covariance(d);
-      if (gm_ && inside && near) {
-        const double quad = d * d * p2(d * *gm_, gm_minus_half);
-        dgm += gi * (-d / 2 - gm_scale_ * (quad - d * gm_linear_));
-      }
     }
     if (inside && !near) {
       dk = 6 * ms * ms * ay;  // (|l|^3 - |l|) is a cubic on one side: D2 = 6 m^2 |y|
-      if (gm_) {
-        dgm = gm_inner_ * std::exp(-*gm_ * (ay - ms)) + (gm_minus_half ? gm_scale_ * ms * ms : 0.0);
+      for (std::size_t g = 0; g < n_gm; ++g) {
+        const GaussMarkovPair& p = gm_[g];
+        dgm[g] = p.inner * std::exp(-p.rate * (ay - ms)) + (gm_minus_half[g] ? p.scale * ms * ms : 0.0);
       }
     }
     if (flicker_near && b_series) db = flicker_inner_series(ay, ms);
@@ -252,14 +266,15 @@ void PairCorrelation::evaluate(double lag, std::span<double> c) const {
     n += go * dn;
     k += go * dk;
     b += go * db;
-    gm += go * dgm;
+    for (std::size_t g = 0; g < n_gm; ++g) gm[g] += go * dgm[g];
   }
   c[0] = q * inv_mm / (tau0_s_ * tau0_s_);
   c[1] = -n * inv_mm / (2 * tau0_s_);
   c[2] = flicker_near ? b * inv_mm : flicker_far(ma, mb, u);
   c[3] = k * inv_mm * tau0_s_ / 12;
-  if (gm_) {
-    c[4] = inside ? gm * inv_mm : gm_far_ * std::exp(-*gm_ * (u - span));
+  for (std::size_t g = 0; g < n_gm; ++g) {
+    c[static_cast<std::size_t>(kLagTerms) + g] =
+        inside ? gm[g] * inv_mm : gm_[g].far * std::exp(-gm_[g].rate * (u - span));
   }
 }
 

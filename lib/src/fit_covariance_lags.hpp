@@ -4,7 +4,7 @@
 // c_ab(L) = Cov(d^a_k, d^b_{k+L}) per unit squared parameter, u = L - (m_a - m_b) (c is even
 // in u), w(L) the number of pairs of terms at lag L, n_a = N - 2 m_a.
 //
-// The stochastic terms are indexed in this order everywhere here: Q, N, B, K [, GM].
+// The stochastic terms are indexed in this order everywhere here: Q, N, B, K [, GM 1, GM 2, ...].
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -15,6 +15,9 @@ namespace sigmatau::detail {
 
 /// Number of stochastic terms without Gauss-Markov (Q, N, B, K).
 inline constexpr int kLagTerms = 4;
+/// Most Gauss-Markov terms one PairCorrelation models (GMWM practice: a real MEMS bias is
+/// described by a sum of a few).
+inline constexpr std::size_t kMaxLagGaussMarkov = 3;
 
 /// Lag sums of one pair of averaging factors over all lags -(n_a - 1) <= L <= n_b - 1.
 struct LagSums {
@@ -26,14 +29,16 @@ struct LagSums {
 /// the integrated rate (fit_covariance_kernels.cpp). O(1) time and memory per lag.
 class PairCorrelation {
  public:
-  /// `gm_rate` = tau0 / tau_c (Gauss-Markov decay per sample) when a GM term is modelled.
-  PairCorrelation(std::int64_t ma, std::int64_t mb, double tau0_s, std::optional<double> gm_rate);
-  /// 4, or 5 with Gauss-Markov.
-  int terms() const { return gm_ ? kLagTerms + 1 : kLagTerms; }
+  /// `gm_rates`: tau0 / tau_c (decay per sample) of each Gauss-Markov term modelled (empty:
+  /// none); their correlations follow K's, in this order.
+  PairCorrelation(std::int64_t ma, std::int64_t mb, double tau0_s,
+                  std::span<const double> gm_rates = {});
+  /// 4 + the number of Gauss-Markov terms.
+  int terms() const { return kLagTerms + static_cast<int>(gm_.size()); }
   /// c_t(lag) for every term into `c` (size terms()). `lag` is an integer for every term; a
   /// non-integer lag (a quadrature node) is allowed strictly between the breakpoints
   /// m_a i - m_b j (i, j in 0..2), where the quantization spikes are zero. Units per unit
-  /// squared parameter: Q [1/s^2], N [1/s], B [1], K [s], GM [1].
+  /// squared parameter: Q [1/s^2], N [1/s], B [1], K [s], each GM [1].
   void evaluate(double lag, std::span<double> c) const;
   std::int64_t ma() const { return ma_; }
   std::int64_t mb() const { return mb_; }
@@ -41,8 +46,12 @@ class PairCorrelation {
  private:
   std::int64_t ma_, mb_;
   double tau0_s_;
-  std::optional<double> gm_;
-  double gm_scale_ = 0, gm_linear_ = 0, gm_far_ = 0, gm_inner_ = 0;
+  /// One first-order Gauss-Markov term's constants for this pair (see the constructor).
+  struct GaussMarkovPair {
+    double rate = 0;  ///< a = tau0 / tau_c
+    double scale = 0, linear = 0, far = 0, inner = 0;
+  };
+  std::vector<GaussMarkovPair> gm_;
 };
 
 /// The flicker (Kasdin untruncated, S = 1 / (2 |sin pi f|)) generalized covariance of the

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sigmatau/fit.hpp"
@@ -13,20 +14,22 @@ namespace sigmatau::detail {
 
 /// Number of linear fit terms (Q, N, B, K, R, in kFitTerms order).
 inline constexpr int kTermCount = 5;
-using TermVector = Eigen::Matrix<double, kTermCount, 1>;
+/// Squared parameters of a model: the kTermCount linear terms, then the squared sigma of each
+/// Gauss-Markov term the design holds (fit_added_terms.cpp).
+using TermVector = Eigen::VectorXd;
 
 /// Index of a term in kFitTerms (Error for Gauss-Markov and sinusoid).
 int term_index(NoiseTerm term);
 
 /// The OAVAR covariance as a quadratic form in the squared parameters:
-/// Cov(s2_a, s2_b) = theta^T H_ab theta, theta = (Q^2, N^2, B^2, K^2, R^2) [, GM sigma^2].
+/// Cov(s2_a, s2_b) = theta^T H_ab theta, theta = (Q^2, N^2, B^2, K^2, R^2 [, GM sigma_g^2...]).
 /// Depends only on the averaging factors, N and tau0 (and the GM correlation time), so it is
 /// built once per curve layout (covariance_basis caches it).
 struct CovarianceBasis {
   std::vector<std::int64_t> m;
   std::int64_t n_phase_points = 0;
   double tau0_s = 0;
-  int terms = kTermCount;               ///< 5, or 6 with a Gauss-Markov term last
+  int terms = kTermCount;               ///< 5 + the number of Gauss-Markov terms (last)
   std::vector<Eigen::MatrixXd> h;       ///< pair (a <= b) at index pair_index(a, b)
 
   std::size_t pair_index(std::size_t a, std::size_t b) const;
@@ -36,8 +39,10 @@ struct CovarianceBasis {
 
 /// Builds the basis: closed-form lag correlations of every term summed by quadrature between
 /// their kinks (fit_covariance_lagsum.cpp); O(1) memory, about 0.1 s per layout at any length.
+/// `gm_tau_c_s`: the correlation times of the Gauss-Markov terms modelled (at most
+/// kMaxLagGaussMarkov), whose squared sigmas follow the five linear terms in theta.
 CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t n_phase_points,
-                                       double tau0_s, std::optional<double> gm_tau_c_s);
+                                       double tau0_s, std::span<const double> gm_tau_c_s);
 
 /// Process-wide cache of build_covariance_basis for the five linear terms (a bench or a triad
 /// fits many curves of the same layout). Thread-safe.

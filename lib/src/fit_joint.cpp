@@ -94,6 +94,7 @@
 #include <mutex>
 #include <tuple>
 
+#include "fit_added_terms.hpp"
 #include "fit_internal.hpp"
 #include "fit_select.hpp"
 #include "sigmatau/confidence.hpp"
@@ -124,7 +125,9 @@ constexpr std::size_t kDesignCacheSize = 16;
 
 Eigen::MatrixXd model_covariance(const CovarianceBasis& basis, const TermVector& theta,
                                  const Eigen::VectorXd& v) {
-  Eigen::MatrixXd sigma = basis.covariance(Eigen::VectorXd(theta));
+  // Columns beyond the basis's terms (a sinusoid, fit_added_terms.cpp) are deterministic: the
+  // scatter of their AVAR estimates is left to the model error.
+  Eigen::MatrixXd sigma = basis.covariance(Eigen::VectorXd(theta.head(basis.terms)));
   for (Eigen::Index j = 0; j < sigma.rows(); ++j) {
     sigma(j, j) = std::max(sigma(j, j), kSigmaFloor * kSigmaFloor * v(j) * v(j));
   }
@@ -133,7 +136,8 @@ Eigen::MatrixXd model_covariance(const CovarianceBasis& basis, const TermVector&
 
 Gls gls(const Design& d, Mask mask, const Eigen::MatrixXd& sigma) {
   Gls out;
-  for (int k = 0; k < kTermCount; ++k) {
+  out.theta = TermVector::Zero(d.a.cols());
+  for (int k = 0; k < d.a.cols(); ++k) {
     if (mask & (1u << k)) out.columns.push_back(k);
   }
   Eigen::LLT<Eigen::MatrixXd> llt(sigma);
@@ -176,7 +180,7 @@ Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis) {
     sigma = model_covariance(basis, fit.theta, d.v);
     Gls next = gls(d, mask, sigma);
     double change = 0;
-    for (int k = 0; k < kTermCount; ++k) {
+    for (Eigen::Index k = 0; k < d.a.cols(); ++k) {
       const double ref = std::max(next.theta(k), fit.theta(k));
       if (ref > 0) change = std::max(change, std::abs(next.theta(k) - fit.theta(k)) / ref);
     }
@@ -186,9 +190,15 @@ Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis) {
   return {std::move(fit), std::move(sigma), it + 1};
 }
 
+double gof_p_value(double chi2, int dof) {
+  if (!(dof > 0) || !std::isfinite(chi2)) return std::numeric_limits<double>::quiet_NaN();
+  return boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(dof),
+                                                  std::max(chi2, 0.0)));
+}
+
 int count_positive(const TermVector& theta) {
   int k = 0;
-  for (int i = 0; i < kTermCount; ++i) k += theta(i) > 0 ? 1 : 0;
+  for (Eigen::Index i = 0; i < theta.size(); ++i) k += theta(i) > 0 ? 1 : 0;
   return k;
 }
 
@@ -284,7 +294,7 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     d.v(j) = p.avar;
   }
   d.a = design_matrix(ms, source);
-  const auto basis = covariance_basis(ms, source.n_phase_points, source.tau0_s);
+  std::shared_ptr<const CovarianceBasis> basis = covariance_basis(ms, source.n_phase_points, source.tau0_s);
 
   Mask model = 0;
   if (!options.terms.empty()) {
@@ -293,7 +303,23 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     model = select_model(d, mask_of(options.candidates), *basis);
   }
 
-  const Iterated final_fit = iterate(d, model, *basis);
+  Iterated final_fit = iterate(d, model, *basis);
+  std::vector<double> gm_tau_c;
+  std::optional<double> sinusoid_hz;
+  double model_error = 0;
+  // No model of the IEEE terms describes the curve: Gauss-Markov terms may (fit_added_terms.cpp).
+  if (options.terms.empty() && options.added_terms &&
+      gof_p_value(final_fit.fit.chi2, static_cast<int>(n) - count_positive(final_fit.fit.theta)) <
+          kExtendBelowPValue) {
+    ExtendedModel ext = extend_with_added_terms(d, ms, source, model, mask_of(options.candidates), basis);
+    d = std::move(ext.design);
+    basis = std::move(ext.basis);
+    model = ext.mask;
+    final_fit = std::move(ext.fit);
+    gm_tau_c = std::move(ext.tau_c_s);
+    sinusoid_hz = ext.sinusoid_hz;
+    model_error = ext.kappa;
+  }
   const Eigen::MatrixXd cov = theta_covariance(final_fit.fit);
   const double level = options.confidence_level;
   const double z_one_sided =
@@ -303,14 +329,16 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   out.method = FitMethod::joint;
   out.points = static_cast<int>(n);
   out.iterations = final_fit.iterations;
-  out.chi_squared = final_fit.fit.chi2;
-  out.bic = final_fit.fit.chi2 + count_positive(final_fit.fit.theta) * std::log(static_cast<double>(n));
-  out.dof = static_cast<int>(n) - count_positive(final_fit.fit.theta);
-  if (out.dof > 0 && std::isfinite(out.chi_squared)) {
-    out.p_value = boost::math::cdf(
-        boost::math::complement(boost::math::chi_squared_distribution<double>(out.dof),
-                                std::max(out.chi_squared, 0.0)));
-  }
+  // Goodness of fit from the estimates' own covariance, whatever the weights.
+  out.chi_squared = model_error > 0 ? own_chi2(d, final_fit.fit.theta, *basis) : final_fit.fit.chi2;
+  out.model_error = model_error;
+  // A Gauss-Markov term has two parameters: sigma and T_c.
+  // An added term has two parameters: its magnitude and its T_c or frequency.
+  const int parameters = count_positive(final_fit.fit.theta) + static_cast<int>(gm_tau_c.size()) +
+                         (sinusoid_hz ? 1 : 0);
+  out.bic = out.chi_squared + parameters * std::log(static_cast<double>(n));
+  out.dof = static_cast<int>(n) - parameters;
+  out.p_value = gof_p_value(out.chi_squared, out.dof);
   {
     const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
     double worst = -1;
@@ -357,6 +385,72 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
       p.upper_bound = std::sqrt(upper_bound(d, model, k, final_fit.fit.theta, *basis, z_one_sided));
     }
     out.parameters.push_back(p);
+  }
+  const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
+  for (std::size_t g = 0; g < gm_tau_c.size(); ++g) {
+    const auto k = kTermCount + static_cast<Eigen::Index>(g);
+    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
+    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
+    const double theta = final_fit.fit.theta(k), var = cov(c, c);
+    GaussMarkovEstimate e;
+    e.tau_c_s = gm_tau_c[g];
+    e.sigma = std::sqrt(theta);
+    if (theta > 0 && var > 0) {
+      e.edf = 2 * theta * theta / var;
+      const Interval ci = chi_squared_interval(e.sigma, e.edf, level);
+      e.ci_low = ci.low;
+      e.ci_high = ci.high;
+    }
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double own = d.a(j, k) * theta;
+      if (own > model_avar(j) - own) ++e.leading_points;
+    }
+    out.gauss_markov.push_back(e);
+  }
+  if (sinusoid_hz) {
+    const auto k = kTermCount + static_cast<Eigen::Index>(gm_tau_c.size());
+    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
+    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
+    const double theta = final_fit.fit.theta(k), var = cov(c, c);
+    SinusoidEstimate e;
+    e.frequency_hz = *sinusoid_hz;
+    e.amplitude = std::sqrt(theta);
+    if (theta > 0 && var > 0) {
+      e.edf = 2 * theta * theta / var;
+      const Interval ci = chi_squared_interval(e.amplitude, e.edf, level);
+      e.ci_low = ci.low;
+      e.ci_high = ci.high;
+    }
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double own = d.a(j, k) * theta;
+      if (own > model_avar(j) - own) ++e.leading_points;
+    }
+    out.sinusoid = e;
+  }
+  std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
+            [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });
+  // With added terms the flicker term alone is no longer the floor (a Gauss-Markov sum may
+  // stand in for it, or share it): the bias stability is the model's ADEV floor (its smallest
+  // ADEV over the fitted taus) / 0.664, as a data sheet reads it from a curve, with the
+  // interval of the curve point there (its EDF); a kept flicker keeps its coefficient in
+  // `flicker`.
+  if (!gm_tau_c.empty() || sinusoid_hz) {
+    auto& b = out.parameters[static_cast<std::size_t>(term_index(NoiseTerm::bias_instability))];
+    {
+      if (b.in_model) b.flicker = b.value;
+      Eigen::Index j_floor = 0;
+      for (Eigen::Index j = 1; j < n; ++j) {
+        if (model_avar(j) < model_avar(j_floor)) j_floor = j;
+      }
+      const auto& p = points[static_cast<std::size_t>(j_floor)];
+      b.from_model_floor = true;
+      b.value = std::sqrt(model_avar(j_floor)) / kFlickerFloorFactor;
+      const Interval ci = chi_squared_interval(b.value, p.edf, level);
+      b.ci_low = ci.low;
+      b.ci_high = ci.high;
+      b.upper_bound = ci.high;
+      b.edf = p.edf;
+    }
   }
   return out;
 }

@@ -47,19 +47,6 @@ constexpr double kMaxEdf = 1e9;
 constexpr double kRidgeStart = 1e-12;
 constexpr double kRidgeMax = 1e-3;
 
-Mask used_terms(const TermVector& theta) {
-  Mask used = 0;
-  for (int t = 0; t < kTermCount; ++t) used |= theta(t) > 0 ? (1u << t) : 0u;
-  return used;
-}
-
-/// The prior penalties of the terms in `used` (kRampPriorPenalty, kQuantizationPriorPenalty).
-double prior_penalty(Mask used) {
-  const Mask ramp = 1u << term_index(NoiseTerm::rate_ramp);
-  const Mask quantization = 1u << term_index(NoiseTerm::quantization);
-  return ((used & ramp) ? kRampPriorPenalty : 0.0) +
-         ((used & quantization) ? kQuantizationPriorPenalty : 0.0);
-}
 
 /// Stage 1: BIC with the largest model's weights for every subset (+ the priors).
 Mask select_common_weights(const Design& d, Mask all, const CovarianceBasis& basis, double penalty) {
@@ -91,6 +78,19 @@ double own_weights_criterion(const Design& d, Mask s, const CovarianceBasis& bas
 }
 
 }  // namespace
+
+Mask used_terms(const TermVector& theta) {
+  Mask used = 0;
+  for (Eigen::Index t = 0; t < theta.size(); ++t) used |= theta(t) > 0 ? (1u << t) : 0u;
+  return used;
+}
+
+double prior_penalty(Mask used) {
+  const Mask ramp = 1u << term_index(NoiseTerm::rate_ramp);
+  const Mask quantization = 1u << term_index(NoiseTerm::quantization);
+  return ((used & ramp) ? kRampPriorPenalty : 0.0) +
+         ((used & quantization) ? kQuantizationPriorPenalty : 0.0);
+}
 
 double curve_deviance(const Design& d, const TermVector& theta, const CovarianceBasis& basis) {
   const Eigen::VectorXd mu = d.a * theta;

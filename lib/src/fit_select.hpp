@@ -15,8 +15,8 @@ using Mask = unsigned;
 /// Weight iterations of a fit at most (convergence takes 5-15 on simulated logs).
 inline constexpr int kMaxWeightIterations = 60;
 
-/// A curve to fit: design matrix A (n x kTermCount, exact AVAR per unit squared parameter)
-/// and the measured OAVAR v [(rate unit)^2].
+/// A curve to fit: design matrix A (n x terms: kTermCount, then one column per Gauss-Markov
+/// term; exact AVAR per unit squared parameter) and the measured OAVAR v [(rate unit)^2].
 struct Design {
   Eigen::MatrixXd a;
   Eigen::VectorXd v;
@@ -24,7 +24,7 @@ struct Design {
 
 /// One non-negative GLS solution for a fixed weight matrix.
 struct Gls {
-  TermVector theta = TermVector::Zero();
+  TermVector theta;          ///< one per column of the design
   double chi2 = 0;           ///< (v - A theta)^T Sigma^-1 (v - A theta)
   Eigen::MatrixXd whitened;  ///< L^-1 A restricted to the mask's columns
   std::vector<int> columns;  ///< term indices of the mask, ascending
@@ -45,8 +45,14 @@ Gls gls(const Design& d, Mask mask, const Eigen::MatrixXd& sigma);
 /// GLS iterated with its own model's covariance, from relative weights, at most
 /// kMaxWeightIterations weight updates.
 Iterated iterate(const Design& d, Mask mask, const CovarianceBasis& basis);
+/// P(chi2_dof > chi2): the joint fit's goodness of fit (NaN when dof < 1 or chi2 is not finite).
+double gof_p_value(double chi2, int dof);
 /// Number of terms with theta_k > 0.
 int count_positive(const TermVector& theta);
+/// The terms with theta_k > 0 as a mask.
+Mask used_terms(const TermVector& theta);
+/// The prior penalties of the terms in `used` (kRampPriorPenalty, kQuantizationPriorPenalty).
+double prior_penalty(Mask used);
 
 /// Added to the criterion of every model with a rate ramp: -2 ln 0.02, a prior probability of
 /// 2 % for a ramp. A ramp is a deterministic drift, rare in a static log, and from the last

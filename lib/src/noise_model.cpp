@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <limits>
 #include <numbers>
 
@@ -69,13 +71,25 @@ double ar1_avar_per_unit(double n, double a) {
   return f / (n * n * one_minus_phi * one_minus_phi);
 }
 
+// Continuous-time AVAR of one first-order Gauss-Markov process at tau (noise_model.hpp).
+double gauss_markov_continuous_avar(const GaussMarkov& gm, double tau) {
+  const double s2 = gm.sigma * gm.sigma;
+  const double r = tau / gm.tau_c_s;
+  // 3 - 4 e^{-r} + e^{-2r} = (1 - e^{-r})(3 - e^{-r}) = e (2 + e) with e = 1 - e^{-r}.
+  // For small r the bracket 1 - e (2 + e)/(2r) cancels; its series is
+  // r^2/3 - r^3/4 + 7 r^4/60 - ... (next term ~r^5, i.e. < 1e-9 relative for r < 1e-3).
+  if (r < 1e-3) return 2 * s2 * (r / 3 - r * r / 4 + 7 * r * r * r / 60);
+  const double e = -std::expm1(-r);
+  return 2 * s2 / r * (1 - e * (2 + e) / (2 * r));
+}
+
 }  // namespace
 
 std::string_view to_string(Sensor sensor) { return sensor == Sensor::gyro ? "gyro" : "accel"; }
 
 bool NoiseTerms::empty() const {
   return !quantization && !white && !bias_instability && !rate_random_walk && !rate_ramp &&
-         !gauss_markov && !sinusoid;
+         gauss_markov.empty() && !sinusoid;
 }
 
 std::string_view to_string(NoiseTerm term) {
@@ -98,7 +112,7 @@ bool has_term(const NoiseTerms& t, NoiseTerm term) {
     case NoiseTerm::bias_instability: return t.bias_instability.has_value();
     case NoiseTerm::rate_random_walk: return t.rate_random_walk.has_value();
     case NoiseTerm::rate_ramp: return t.rate_ramp.has_value();
-    case NoiseTerm::gauss_markov: return t.gauss_markov.has_value();
+    case NoiseTerm::gauss_markov: return !t.gauss_markov.empty();
     case NoiseTerm::sinusoid: return t.sinusoid.has_value();
   }
   return false;
@@ -118,11 +132,50 @@ NoiseTerms only(const NoiseTerms& t, NoiseTerm term) {
   return r;
 }
 
+namespace {
+
+/// flicker_avar_per_unit's sum, O(m) long double operations (0.1 s at m = 2^17).
+double flicker_avar_sum(std::int64_t m, std::int64_t taps);
+
+/// Most (m, taps) pairs flicker_avar_per_unit keeps: a fit and its consistency guards ask for
+/// the same octave factors again and again (11 s of a 6-channel fit of a 1e6-sample log went
+/// to recomputing them).
+constexpr std::size_t kFlickerCacheSize = 4096;
+
+}  // namespace
+
+NoiseTerms only_gauss_markov(const NoiseTerms& t, std::size_t index) {
+  if (index >= t.gauss_markov.size())
+    throw Error("Gauss-Markov entry " + std::to_string(index) + " requested, the model has " +
+                std::to_string(t.gauss_markov.size()));
+  NoiseTerms r;
+  r.gauss_markov.push_back(t.gauss_markov[index]);
+  return r;
+}
+
 double flicker_avar_per_unit(std::int64_t m, std::int64_t taps) {
   if (!(m >= 1)) throw Error("averaging factor m must be >= 1, got " + std::to_string(m));
   if (!(taps >= 0)) throw Error("flicker taps must be >= 0, got " + std::to_string(taps));
   const bool untruncated = taps == 0;
   if (untruncated && m >= kFlickerAsymptoticM) return 2 * std::numbers::ln2 / kPi;
+  static std::mutex mutex;
+  static std::map<std::pair<std::int64_t, std::int64_t>, double> cache;
+  const std::pair key{m, taps};
+  {
+    std::lock_guard lock(mutex);
+    if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  const double value = flicker_avar_sum(m, taps);
+  std::lock_guard lock(mutex);
+  if (cache.size() >= kFlickerCacheSize) cache.clear();
+  cache.emplace(key, value);
+  return value;
+}
+
+namespace {
+
+double flicker_avar_sum(std::int64_t m, std::int64_t taps) {
+  const bool untruncated = taps == 0;
   // k runs over the support of c = h * a_m: [0, L - 1 + 2m] (truncated) or [0, K] + tail.
   const std::int64_t k_end = untruncated ? 2 * m + kFlickerTailFactor * m : taps - 1 + 2 * m;
   // H_k for k = 0..k_end, with H_k = H_{L-1} for k >= L (truncated filter). The loop reads
@@ -156,6 +209,8 @@ double flicker_avar_per_unit(std::int64_t m, std::int64_t taps) {
   }
   return 0.5 * total;
 }
+
+}  // namespace
 
 FlickerBand flicker_band(std::int64_t taps) {
   if (!(taps >= 0)) throw Error("flicker taps must be >= 0, got " + std::to_string(taps));
@@ -195,9 +250,10 @@ double sampled_avar(const NoiseTerms& t, NoiseTerm term, std::int64_t m, const S
     }
     case NoiseTerm::rate_ramp: return t.rate_ramp ? 0.5 * std::pow(*t.rate_ramp * tau, 2) : 0;
     case NoiseTerm::gauss_markov: {
-      if (!t.gauss_markov) return 0;
-      const double sigma = t.gauss_markov->sigma;
-      return sigma * sigma * ar1_avar_per_unit(n, tau0 / t.gauss_markov->tau_c_s);
+      double sum = 0;  // independent processes: their AVARs add
+      for (const GaussMarkov& gm : t.gauss_markov)
+        sum += gm.sigma * gm.sigma * ar1_avar_per_unit(n, tau0 / gm.tau_c_s);
+      return sum;
     }
     case NoiseTerm::sinusoid: {
       if (!t.sinusoid) return 0;
@@ -235,16 +291,9 @@ double continuous_avar(const NoiseTerms& t, NoiseTerm term, double tau) {
       return t.rate_random_walk ? *t.rate_random_walk * *t.rate_random_walk * tau / 3 : 0;
     case NoiseTerm::rate_ramp: return t.rate_ramp ? 0.5 * std::pow(*t.rate_ramp * tau, 2) : 0;
     case NoiseTerm::gauss_markov: {
-      if (!t.gauss_markov) return 0;
-      const double s2 = t.gauss_markov->sigma * t.gauss_markov->sigma;
-      const double tc = t.gauss_markov->tau_c_s;
-      const double r = tau / tc;
-      // 3 - 4 e^{-r} + e^{-2r} = (1 - e^{-r})(3 - e^{-r}) = e (2 + e) with e = 1 - e^{-r}.
-      // For small r the bracket 1 - e (2 + e)/(2r) cancels; its series is
-      // r^2/3 - r^3/4 + 7 r^4/60 - ... (next term ~r^5, i.e. < 1e-9 relative for r < 1e-3).
-      if (r < 1e-3) return 2 * s2 * (r / 3 - r * r / 4 + 7 * r * r * r / 60);
-      const double e = -std::expm1(-r);
-      return 2 * s2 / r * (1 - e * (2 + e) / (2 * r));
+      double sum = 0;  // independent processes: their AVARs add
+      for (const GaussMarkov& gm : t.gauss_markov) sum += gauss_markov_continuous_avar(gm, tau);
+      return sum;
     }
     case NoiseTerm::sinusoid: {
       if (!t.sinusoid) return 0;
@@ -275,10 +324,10 @@ double two_sided_psd(const NoiseTerms& t, NoiseTerm term, double f, double tau0_
     case NoiseTerm::rate_random_walk:
       return t.rate_random_walk ? std::pow(*t.rate_random_walk / (2 * kPi * f), 2) : 0;
     case NoiseTerm::gauss_markov: {
-      if (!t.gauss_markov) return 0;
-      const double tc = t.gauss_markov->tau_c_s;
-      return 2 * t.gauss_markov->sigma * t.gauss_markov->sigma * tc /
-             (1 + std::pow(2 * kPi * f * tc, 2));
+      double sum = 0;  // independent processes: their PSDs add
+      for (const GaussMarkov& gm : t.gauss_markov)
+        sum += 2 * gm.sigma * gm.sigma * gm.tau_c_s / (1 + std::pow(2 * kPi * f * gm.tau_c_s, 2));
+      return sum;
     }
     case NoiseTerm::rate_ramp:
     case NoiseTerm::sinusoid: return 0;
@@ -328,9 +377,13 @@ void validate(const NoiseTerms& t, std::string_view what) {
   positive(t.rate_random_walk, "rate random walk K");
   if (t.rate_ramp && !std::isfinite(*t.rate_ramp))
     throw Error(std::string(what) + ": rate ramp R must be finite");
-  if (t.gauss_markov) {
-    positive(t.gauss_markov->sigma, "Gauss-Markov sigma");
-    positive(t.gauss_markov->tau_c_s, "Gauss-Markov tau_c");
+  if (t.gauss_markov.size() > kMaxGaussMarkov)
+    throw Error(std::string(what) + ": " + std::to_string(t.gauss_markov.size()) +
+                " Gauss-Markov processes, at most " + std::to_string(kMaxGaussMarkov) +
+                " are supported");
+  for (const GaussMarkov& gm : t.gauss_markov) {
+    positive(gm.sigma, "Gauss-Markov sigma");
+    positive(gm.tau_c_s, "Gauss-Markov tau_c");
   }
   if (t.sinusoid) {
     positive(t.sinusoid->amplitude, "sinusoid amplitude");

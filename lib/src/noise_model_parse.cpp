@@ -85,9 +85,17 @@ NoiseTerms parse_noise_terms(std::string_view text, Sensor sensor) {
       throw Error("model: '" + std::string(item) + "': expected KEY=VALUE UNIT (keys Q, N, B, K, R, GM, SIN)");
     const std::string key(trim(item.substr(0, eq)));
     const std::string_view value = item.substr(eq + 1);
-    for (const auto& k : seen)
-      if (k == key) throw Error("model: term " + key + " is given twice");
-    seen.push_back(key);
+    if (key == "GM") {
+      // GM may repeat: a sum of Gauss-Markov processes, up to kMaxGaussMarkov of them.
+      if (terms.gauss_markov.size() >= kMaxGaussMarkov)
+        throw Error("model: '" + std::string(item) + "' is Gauss-Markov term number " +
+                    std::to_string(terms.gauss_markov.size() + 1) + "; at most " +
+                    std::to_string(kMaxGaussMarkov) + " GM terms are supported");
+    } else {
+      for (const auto& k : seen)
+        if (k == key) throw Error("model: term " + key + " is given twice");
+      seen.push_back(key);
+    }
     if (key == "Q") {
       terms.quantization = quantity(value, u.q, "Q");
     } else if (key == "N") {
@@ -100,8 +108,8 @@ NoiseTerms parse_noise_terms(std::string_view text, Sensor sensor) {
       terms.rate_ramp = quantity(value, u.r, "R", false);
     } else if (key == "GM") {
       const auto [sigma, tau] = split_at(value, key, "GM=<sigma> @ <correlation time>");
-      terms.gauss_markov = GaussMarkov{quantity(sigma, u.b, "GM sigma"),
-                                       quantity(tau, dim::time, "GM correlation time")};
+      terms.gauss_markov.push_back(GaussMarkov{quantity(sigma, u.b, "GM sigma"),
+                                               quantity(tau, dim::time, "GM correlation time")});
     } else if (key == "SIN") {
       const auto [amplitude, frequency] = split_at(value, key, "SIN=<amplitude> @ <frequency>");
       terms.sinusoid = Sinusoid{quantity(amplitude, u.b, "SIN amplitude"),
@@ -126,9 +134,9 @@ std::string format_noise_terms(const NoiseTerms& t, Sensor sensor) {
   if (t.bias_instability) add("B", *t.bias_instability, NoiseTerm::bias_instability);
   if (t.rate_random_walk) add("K", *t.rate_random_walk, NoiseTerm::rate_random_walk);
   if (t.rate_ramp) add("R", *t.rate_ramp, NoiseTerm::rate_ramp);
-  if (t.gauss_markov) {
-    add("GM", t.gauss_markov->sigma, NoiseTerm::gauss_markov);
-    out += " @ " + number(t.gauss_markov->tau_c_s) + " s";
+  for (const GaussMarkov& gm : t.gauss_markov) {  // one GM key per entry, in order
+    add("GM", gm.sigma, NoiseTerm::gauss_markov);
+    out += " @ " + number(gm.tau_c_s) + " s";
   }
   if (t.sinusoid) {
     add("SIN", t.sinusoid->amplitude, NoiseTerm::sinusoid);

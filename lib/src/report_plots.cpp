@@ -52,6 +52,10 @@ std::string term_color(const std::string& term) {
   if (term == "K") return "#8c564b";  // brown
   if (term == "Q") return "#e377c2";  // pink
   if (term == "R") return "#bcbd22";  // olive
+  // One per Gauss-Markov entry of a sum (analysis_results: "GM1", "GM2", "GM3").
+  if (term == "GM1") return "#ff7f0e";  // orange
+  if (term == "GM2") return "#c49c00";  // dark yellow
+  if (term == "GM3") return "#7b4173";  // plum
   return "#999999";
 }
 

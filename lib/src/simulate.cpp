@@ -31,6 +31,10 @@ const double kUniformWidthPerQ = std::sqrt(12.0);
 constexpr std::int64_t kMaxFlickerTaps = std::int64_t{1} << 28;
 /// Stream number of the real quantizer's initial residual (after the NoiseTerm streams).
 constexpr int kQuantizerStream = static_cast<int>(kAllNoiseTerms.size());
+/// Stream number of Gauss-Markov entry i >= 1 is kQuantizerStream + i (after every older stream,
+/// so a model with one GM, entry 0 on the NoiseTerm::gauss_markov stream, reproduces the samples
+/// it gave before sums of Gauss-Markov processes existed).
+int gauss_markov_stream(std::size_t index) { return kQuantizerStream + static_cast<int>(index); }
 /// The sinusoid recurrence restarts from std::sin/cos every this many samples (see generate).
 constexpr std::int64_t kSinusoidRestart = 1024;
 
@@ -48,9 +52,10 @@ struct Channel {
   NoiseTerms terms;
   CountsFormat counts;
   std::array<std::uint64_t, kAllNoiseTerms.size()> keys{};
+  std::array<std::uint64_t, kMaxGaussMarkov> gm_keys{};  // per Gauss-Markov entry
   // Streaming state.
   double rw = 0;      // random-walk value b_{k-1}
-  double gm = 0;      // Gauss-Markov value g_{k-1}
+  std::array<double, kMaxGaussMarkov> gm{};  // Gauss-Markov values g_{k-1}, per entry
   double e_prev = 0;  // quantization error e_{k-1}
   double quantizer_step = 0;      // real quantizer step [rad | m/s] (0: none)
   double quantizer_residual = 0;  // integrated output minus its quantized value [rad | m/s]
@@ -261,17 +266,18 @@ void Simulator::Impl::generate(Channel& c, detail::FlickerFilter::Workspace* ws,
     }
     c.rw = rw;
   }
-  if (t.gauss_markov) {
-    detail::fill_normal(key_of(c, NoiseTerm::gauss_markov), a, n, w);
-    const double phi = std::exp(-tau0 / t.gauss_markov->tau_c_s);
+  for (std::size_t e = 0; e < t.gauss_markov.size(); ++e) {  // one AR(1) per entry
+    const GaussMarkov& gm = t.gauss_markov[e];
+    detail::fill_normal(c.gm_keys[e], a, n, w);
+    const double phi = std::exp(-tau0 / gm.tau_c_s);
     // sqrt(1 - phi^2) without cancellation: 1 - phi^2 = -expm1(-2 tau0/T_c).
-    const double drive = t.gauss_markov->sigma * std::sqrt(-std::expm1(-2 * tau0 / t.gauss_markov->tau_c_s));
-    double g = c.gm;
+    const double drive = gm.sigma * std::sqrt(-std::expm1(-2 * tau0 / gm.tau_c_s));
+    double g = c.gm[e];
     for (std::int64_t i = 0; i < n; ++i) {
       g = phi * g + drive * w[i];
       v[i] += g;
     }
-    c.gm = g;
+    c.gm[e] = g;
   }
   // Deterministic terms at the sample time (rate) or averaged over the interval (increment).
   const double t_offset = increment ? 0.5 : 0.0;
@@ -403,9 +409,13 @@ Simulator::Simulator(const SimulationConfig& config) : impl_(std::make_unique<Im
             &c.quantizer_residual);
         c.quantizer_residual *= c.quantizer_step;
       }
-      if (c.terms.gauss_markov) {  // g_{-1} from the stationary distribution
-        detail::fill_normal(key_of(c, NoiseTerm::gauss_markov), -1, 1, &c.gm);
-        c.gm *= c.terms.gauss_markov->sigma;
+      for (std::size_t e = 0; e < c.terms.gauss_markov.size(); ++e) {
+        c.gm_keys[e] = e == 0 ? key_of(c, NoiseTerm::gauss_markov)
+                              : detail::stream_key(config.seed, sensor, axis,
+                                                   gauss_markov_stream(e));
+        // g_{-1} from the stationary distribution
+        detail::fill_normal(c.gm_keys[e], -1, 1, &c.gm[e]);
+        c.gm[e] *= c.terms.gauss_markov[e].sigma;
       }
       any_flicker = any_flicker || c.terms.bias_instability.has_value();
       s.channels.push_back(std::move(c));

@@ -32,8 +32,12 @@ nlohmann::json terms_json(const NoiseTerms& t) {
   if (t.bias_instability) j["bias_instability"] = *t.bias_instability;
   if (t.rate_random_walk) j["rate_random_walk"] = *t.rate_random_walk;
   if (t.rate_ramp) j["rate_ramp"] = *t.rate_ramp;
-  if (t.gauss_markov)
-    j["gauss_markov"] = {{"sigma", t.gauss_markov->sigma}, {"tau_c_s", t.gauss_markov->tau_c_s}};
+  if (!t.gauss_markov.empty()) {  // a list: one object per Gauss-Markov entry, in order
+    nlohmann::json list = nlohmann::json::array();
+    for (const GaussMarkov& gm : t.gauss_markov)
+      list.push_back({{"sigma", gm.sigma}, {"tau_c_s", gm.tau_c_s}});
+    j["gauss_markov"] = list;
+  }
   if (t.sinusoid)
     j["sinusoid"] = {{"amplitude", t.sinusoid->amplitude},
                      {"frequency_hz", t.sinusoid->frequency_hz},

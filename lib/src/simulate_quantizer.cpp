@@ -83,7 +83,7 @@ double flicker_window_variance(std::int64_t j, std::int64_t taps) {
 
 double per_sample_gaussian_variance(const NoiseTerms& t, double tau0_s) {
   double v = t.white ? *t.white * *t.white * tau0_s : 0.0;
-  if (t.gauss_markov) v += gauss_markov_increment_variance(*t.gauss_markov, 1, tau0_s);
+  for (const GaussMarkov& gm : t.gauss_markov) v += gauss_markov_increment_variance(gm, 1, tau0_s);
   return v;
 }
 
@@ -92,7 +92,8 @@ double real_quantizer_avar(double step, std::int64_t m, double tau0_s, const Noi
   const double w = t.quantization ? *t.quantization * std::sqrt(12.0) : 0.0;
   const auto r = [&](double j) {
     double v = t.white ? *t.white * *t.white * tau0_s * j : 0.0;
-    if (t.gauss_markov) v += gauss_markov_increment_variance(*t.gauss_markov, j, tau0_s);
+    for (const GaussMarkov& gm : t.gauss_markov)  // independent entries: variances add
+      v += gauss_markov_increment_variance(gm, j, tau0_s);
     // Every harmonic is below e^-40 already: R = 0 whatever the flicker adds (it only adds
     // variance), so its O(taps) sum is skipped.
     if (2 * kPi * kPi * v / (step * step) > kSeriesCut) return 0.0;

@@ -44,11 +44,11 @@ inline constexpr double kQuantizerStepRatioLimit = 2.0;
 bool real_quantizer_exact(const SimulationConfig& config, const NoiseTerms& terms);
 
 /// The variance of the Gaussian part of one sample's integrated noise [rad^2 | (m/s)^2]:
-/// N^2 tau0 (white) + sigma^2 tau0^2 (Gauss-Markov).
+/// N^2 tau0 (white) + sigma^2 tau0^2 (each Gauss-Markov entry).
 double per_sample_gaussian_variance(const NoiseTerms& terms, double tau0_s);
 
 /// AVAR_e(m) [rate unit^2] of the file comment for step D > 0, averaging factor m >= 1, the
-/// channel's terms (white, quantization, gauss_markov and bias_instability with the flicker
+/// channel's terms (white, quantization, every gauss_markov entry and bias_instability with the flicker
 /// filter's `flicker_taps` are used) and constant rate d [rad/s | m/s^2].
 double real_quantizer_avar(double step, std::int64_t m, double tau0_s, const NoiseTerms& terms,
                            double drift, std::int64_t flicker_taps);

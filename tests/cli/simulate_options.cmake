@@ -178,6 +178,21 @@ add_test(NAME cli_simulate_per_axis_unlabelled
          COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 2 "has no axis label"
                  --model "x: N=0.15 deg/sqrt(h)| N=1 deg/sqrt(h)" -o bad.csv
          WORKING_DIRECTORY ${SIMO_DIR})
+# A sum of Gauss-Markov processes: up to three GM keys; a fourth is an error naming the item.
+add_test(NAME cli_simulate_gauss_markov_sum
+         COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 0 ""
+                 --model "N=0.15 deg/sqrt(h), GM=0.01 deg/s @ 100 s, GM=0.003 deg/s @ 2000 s"
+                 -o gm_sum.csv
+         WORKING_DIRECTORY ${SIMO_DIR})
+simo_check(cli_simulate_gauss_markov_sum_sidecar "cli_simulate_gauss_markov_sum"
+  -DFILE=${SIMO_DIR}/gm_sum.csv.json
+  "-DJSON=gyro/noise/0/gauss_markov/0/tau_c_s=^100(\\.0)?$@@gyro/noise/0/gauss_markov/1/tau_c_s=^2000(\\.0)?$")
+add_test(NAME cli_simulate_fourth_gauss_markov
+         COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 2
+                 "'GM=4 deg/s @ 1000 s' is Gauss-Markov term number 4; at most 3"
+                 --model "GM=1 deg/s @ 1 s, GM=2 deg/s @ 10 s, GM=3 deg/s @ 100 s, GM=4 deg/s @ 1000 s"
+                 -o bad.csv
+         WORKING_DIRECTORY ${SIMO_DIR})
 add_test(NAME cli_simulate_per_axis_twice
          COMMAND bash per_axis.sh $<TARGET_FILE:sigmatau_cli> 2 "axis y is given twice"
                  --model "xy: N=0.15 deg/sqrt(h)| y: N=1 deg/sqrt(h)" -o bad.csv

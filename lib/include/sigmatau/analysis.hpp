@@ -55,6 +55,9 @@ struct AnalysisOptions {
   /// Taus the noise-term fit uses (FitOptions::tau_min_s / tau_max_s); the curves keep all.
   double fit_tau_min_s = 0;
   double fit_tau_max_s = std::numeric_limits<double>::infinity();
+  /// FitOptions::added_terms: the joint fit may add Gauss-Markov terms and a sinusoid and leave
+  /// out filter-bent taus when the IEEE terms do not describe a curve.
+  bool fit_added_terms = true;
   WelchOptions welch;
   int psd_bins_per_decade = 20;  ///< PSD stored log-binned (the raw PSD of a long log is huge)
   TrimMode trim = TrimMode::automatic;

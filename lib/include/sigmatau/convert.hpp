@@ -84,7 +84,9 @@ inline constexpr double kDefaultReferenceTime = 100.0;
 struct TriadNoise {
   Sensor sensor = Sensor::gyro;
   /// Per axis x, y, z. Used: white (N), bias_instability (B, flicker), rate_random_walk (K),
-  /// gauss_markov. Other terms are ignored by the conversion (and named in the explanation).
+  /// gauss_markov (a sum of entries: --bias-model gm carries the entry with the largest sigma,
+  /// rw takes K^2 = sum 2 sigma_i^2/T_c_i; TriadDiscrete::gauss_markov_note). Other terms are
+  /// ignored by the conversion (and named in the explanation).
   std::array<NoiseTerms, 3> axes;
   /// Correlation between the axes' white noises (unit diagonal); identity when not given.
   Eigen::Matrix3d white_correlation = Eigen::Matrix3d::Identity();
@@ -196,7 +198,7 @@ struct WhiteDiscrete {
 enum class BiasSource {
   rate_random_walk,  ///< K given
   bias_stability,    ///< B given (data-sheet in-run bias stability)
-  gauss_markov,      ///< a GM {sigma, T_c} given
+  gauss_markov,      ///< a GM {sigma, T_c} given (or a sum of them: see discretize)
 };
 std::string_view to_string(BiasSource source);
 
@@ -232,6 +234,11 @@ struct TriadDiscrete {
   bool bias_from_upper_bound = false;
   /// A rule-of-thumb K above the fit's own upper bound on K: says by how much ("" otherwise).
   std::string bias_note;
+  /// When the bias comes from a sum of Gauss-Markov processes (more than one entry on some
+  /// axis): how the sum was carried ("gm": only the entry with the largest sigma, named with
+  /// the ones left out; "rw": K^2 summed over the entries). "" otherwise. convert_noise adds it
+  /// to DiscreteNoise::notes (every file's header, JSON "notes").
+  std::string gauss_markov_note;
   std::optional<WhiteDiscrete> white;
   std::optional<BiasDiscrete> bias;
 };

@@ -19,7 +19,8 @@ namespace sigmatau {
 ///   B bias instability   deg/h            ug
 ///   K random walk        deg/h/sqrt(h)    m/s^3/sqrt(Hz)
 ///   R ramp               deg/h^2          m/s^3
-///   Gauss-Markov sigma and sinusoid amplitude: the rate unit of B (deg/h | ug).
+///   Gauss-Markov sigma and sinusoid amplitude: the rate unit of B (deg/h | ug); a sum of
+///   Gauss-Markov processes gives every entry's sigma in it.
 /// An accelerometer's K and R keep their SI spelling: data sheets rarely print them, and
 /// filter files (Kalibr's accelerometer_random_walk) use m/s^3/sqrt(Hz).
 std::string_view display_unit(NoiseTerm term, Sensor sensor);

@@ -51,7 +51,7 @@ inline constexpr std::array<NoiseTerm, 5> kFitTerms{
     NoiseTerm::quantization, NoiseTerm::white, NoiseTerm::bias_instability,
     NoiseTerm::rate_random_walk, NoiseTerm::rate_ramp};
 
-/// "Q", "N", "B", "K", "R" (Error for Gauss-Markov and sinusoid, which the fit does not model).
+/// "Q", "N", "B", "K", "R", and "GM", "SIN" for the terms the joint fit adds (fit_added_terms).
 std::string_view term_symbol(NoiseTerm term);
 /// Parses "N,B,K" (symbols Q N B K R, case-sensitive, any order, no repeats) for --terms.
 /// Throws Error naming the text and the bad item.
@@ -84,6 +84,11 @@ struct FitOptions {
   /// sensor that filters its output departs from every noise term at the shortest taus.
   double tau_min_s = 0;
   double tau_max_s = std::numeric_limits<double>::infinity();
+  /// When no model of the candidates describes the curve (p < 1e-3), whether the joint fit
+  /// may add the terms real sensors add (up to three Gauss-Markov terms and a sinusoid), weight
+  /// with a relative model error and leave out the shortest taus a sensor's filter bends
+  /// (docs/fit.md, "Real sensors"). --ieee-terms-only turns it off.
+  bool added_terms = true;
 };
 
 /// Family-wise two-sided level of the curve points' intervals the consistency guards use,
@@ -144,10 +149,41 @@ struct ParameterEstimate {
   /// Slopes: points on its slope line (B: 1, the minimum). 0 for a term not in the model
   /// (rise_without_floor reads B's).
   int leading_points = 0;
+  /// B only, joint fit with added terms (Gauss-Markov, sinusoid): the bias stability is read
+  /// from the model's ADEV floor (its smallest ADEV over the fitted taus / 0.664, what a data
+  /// sheet quotes), so value and interval hold that reading, the flicker term alone no longer
+  /// being the floor; in_model says whether a flicker term is in the model too, with its own
+  /// coefficient in `flicker`.
+  bool from_model_floor = false;
+  /// B only, from_model_floor with a flicker term in the model: its coefficient [rate unit]
+  /// (the model's B); NaN otherwise.
+  double flicker = std::numeric_limits<double>::quiet_NaN();
   /// Curve read-outs only (NoiseFit::readings): the factor (<= 1) by which the read-out was
   /// lowered so that the term alone stays within the curve at every fitted tau (the -1/2 line
   /// fitted through a filtered or bending curve crosses it); 1 when it was not.
   double lowered_to_curve = 1;
+};
+
+/// One first-order Gauss-Markov term of a joint fit (fit_added_terms.cpp's search), SI.
+struct GaussMarkovEstimate {
+  double sigma = 0;    ///< stationary standard deviation [rad/s | m/s^2]
+  double ci_low = 0;   ///< interval of sigma at the fit's level (T_c held at its estimate)
+  double ci_high = 0;
+  double tau_c_s = 0;  ///< correlation time [s] (searched on a grid and refined; no interval)
+  /// Effective degrees of freedom of sigma^2 (Satterthwaite), NaN when not applicable.
+  double edf = std::numeric_limits<double>::quiet_NaN();
+  /// Fitted taus at which this term's AVAR exceeds the sum of the other terms'.
+  int leading_points = 0;
+};
+
+/// A sinusoid of a joint fit (fit_added_terms.cpp's search), SI.
+struct SinusoidEstimate {
+  double amplitude = 0;     ///< A [rad/s | m/s^2]
+  double ci_low = 0;        ///< interval of A at the fit's level (f held at its estimate)
+  double ci_high = 0;
+  double frequency_hz = 0;  ///< f [Hz] (searched on a grid and refined; no interval)
+  double edf = std::numeric_limits<double>::quiet_NaN();
+  int leading_points = 0;   ///< fitted taus where its AVAR exceeds the other terms' sum
 };
 
 /// The result of one method on one channel.
@@ -155,17 +191,30 @@ struct ChannelFit {
   FitMethod method = FitMethod::joint;    ///< joint or slopes
   std::vector<NoiseTerm> model_terms;     ///< in kFitTerms order
   std::vector<ParameterEstimate> parameters;  ///< one per candidate term, kFitTerms order
+  /// Joint fit only: the Gauss-Markov terms added because no model of the five IEEE terms
+  /// described the curve (p below 1e-3), ascending T_c; empty otherwise.
+  std::vector<GaussMarkovEstimate> gauss_markov;
+  /// Joint fit only: a sinusoid added for the same reason (a narrow bump: a vibration).
+  std::optional<SinusoidEstimate> sinusoid;
   /// Joint fit: generalised chi-squared of the final model and its BIC; iterations of the
   /// weight loop. Slopes: NaN, NaN, 0.
   double chi_squared = 0;
   double bic = 0;
   int iterations = 0;
   int points = 0;  ///< AVAR points used
-  /// Joint fit: goodness of fit. dof = points - terms kept; p_value = P(chi2_dof > chi_squared)
+  /// Joint fit: goodness of fit. dof = points - parameters (2 per Gauss-Markov term); p_value = P(chi2_dof > chi_squared)
   /// (near 0: no model of these terms describes the curve); misfit_tau_s the tau of the point
   /// furthest from the model in standard deviations (EDF-based). Slopes: 0, NaN, NaN.
   int dof = 0;
   double p_value = std::numeric_limits<double>::quiet_NaN();
+  /// Joint fit rejected by its own covariance (p < 1e-3): the relative model error kappa of its
+  /// weights, Sigma + kappa^2 diag(model AVAR^2), by maximum likelihood (docs/fit.md): the
+  /// intervals include the scatter the model leaves. 0 when the fit was not rejected.
+  double model_error = 0;
+  /// Joint fit only: the shortest taus left out as bent by the sensor's own filter (fit_noise:
+  /// the fit was rejected, departed most there, and described the rest better without them),
+  /// ascending [s]; empty when none was.
+  std::vector<double> left_out_taus_s;
   double misfit_tau_s = std::numeric_limits<double>::quiet_NaN();
   /// The furthest point is among the four shortest taus fitted: a sensor's own filtering (the
   /// fit bends toward the filtered points, so the furthest is among them or just after them).
@@ -220,6 +269,10 @@ void check_tau_range(double tau_min_s, double tau_max_s);
 inline constexpr double kMisfitPValue = 1e-3;
 /// A warning naming `channel` when the joint fit's p value is below kMisfitPValue, else "".
 std::string misfit_warning(const ChannelFit& fit, const std::string& channel);
+
+/// A warning naming `channel` when the joint fit left out its shortest taus as bent by the
+/// sensor's own filter (ChannelFit::left_out_taus_s), else "".
+std::string left_out_warning(const ChannelFit& fit, const std::string& channel);
 
 /// A warning naming `channel` when the curve's read-outs stand in for the joint fit
 /// (NoiseFit::readings): why, each contradiction (values in `sensor`'s data-sheet units), and

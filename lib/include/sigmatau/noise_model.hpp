@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -55,15 +56,22 @@ struct Sinusoid {
   friend bool operator==(const Sinusoid&, const Sinusoid&) = default;
 };
 
-/// The noise of one axis, SI, continuous time. A term that is absent (nullopt) is absent
-/// everywhere: it is not simulated, not fitted, not exported and not plotted.
+/// At most this many Gauss-Markov processes per axis (GMWM practice: real MEMS bias behaviour is
+/// often described by a sum of up to three first-order Gauss-Markov processes).
+inline constexpr std::size_t kMaxGaussMarkov = 3;
+
+/// The noise of one axis, SI, continuous time. A term that is absent (nullopt, or an empty
+/// Gauss-Markov list) is absent everywhere: it is not simulated, not fitted, not exported and not
+/// plotted.
 struct NoiseTerms {
   std::optional<double> quantization;       ///< Q [rad | m/s]
   std::optional<double> white;              ///< N [rad/s/sqrt(Hz) | m/s^2/sqrt(Hz)]
   std::optional<double> bias_instability;   ///< B [rad/s | m/s^2] (flicker, ADEV floor 0.664 B)
   std::optional<double> rate_random_walk;   ///< K [rad/s^2/sqrt(Hz) | m/s^3/sqrt(Hz)]
   std::optional<double> rate_ramp;          ///< R [rad/s^2 | m/s^3]
-  std::optional<GaussMarkov> gauss_markov;  ///< {sigma, tau_c}
+  /// A sum of 0..kMaxGaussMarkov independent first-order Gauss-Markov processes {sigma, tau_c};
+  /// the term's AVAR and PSD are the sums of the entries' (independent processes add).
+  std::vector<GaussMarkov> gauss_markov;
   std::optional<Sinusoid> sinusoid;         ///< {amplitude, frequency}
 
   /// True when no term is present.
@@ -87,10 +95,13 @@ inline constexpr std::array<NoiseTerm, 7> kAllNoiseTerms{
     NoiseTerm::sinusoid};
 /// "quantization", "white", "bias_instability", ...
 std::string_view to_string(NoiseTerm term);
-/// Whether `terms` has `term`.
+/// Whether `terms` has `term` (Gauss-Markov: at least one entry).
 bool has_term(const NoiseTerms& terms, NoiseTerm term);
-/// The same terms with only `term` kept (for per-term curves).
+/// The same terms with only `term` kept (for per-term curves; Gauss-Markov: every entry).
 NoiseTerms only(const NoiseTerms& terms, NoiseTerm term);
+/// The terms with only Gauss-Markov entry `index` kept (for one curve per entry). Throws Error if
+/// index is out of range.
+NoiseTerms only_gauss_markov(const NoiseTerms& terms, std::size_t index);
 
 /// sqrt(2 ln 2 / pi) = 0.664282: ADEV floor of flicker (bias instability) per unit B
 /// (IEEE 952; THEORY.md fact 4).
@@ -115,8 +126,10 @@ struct Sampling {
 ///    h_k = h_{k-1}(k - 1/2)/k truncated to L taps (flicker_avar_per_unit);
 ///  - rate random walk: (2 n^2 + 1) w^2 / (6 n), w^2 = K^2 tau0 (Zhang 2008);
 ///  - rate ramp: (R tau)^2 / 2 (exact for a sampled ramp);
-///  - Gauss-Markov: AR(1) with phi = exp(-tau0/T_c), innovation variance sigma^2 (1 - phi^2):
-///    q [n - 3 phi - n phi^2 + 4 phi^(n+1) - phi^(2n+1)] / [n^2 (1-phi)^2 (1-phi^2)] (Zhang 2008);
+///  - Gauss-Markov: per entry an AR(1) with phi = exp(-tau0/T_c), innovation variance
+///    q = sigma^2 (1 - phi^2):
+///    q [n - 3 phi - n phi^2 + 4 phi^(n+1) - phi^(2n+1)] / [n^2 (1-phi)^2 (1-phi^2)] (Zhang 2008),
+///    summed over the entries (independent processes);
 ///  - sinusoid (phase-averaged): A^2 sin^4(n theta/2) / (n^2 sin^2(theta/2)), theta = 2 pi f tau0.
 /// Throws Error if m < 1 or tau0 is not > 0.
 double sampled_avar(const NoiseTerms& terms, NoiseTerm term, std::int64_t m,
@@ -142,14 +155,15 @@ FlickerBand flicker_band(std::int64_t taps);
 /// Continuous-time (IEEE 952) AVAR of one term at tau [s], in (rate unit)^2: 3Q^2/tau^2, N^2/tau,
 /// (2 ln 2/pi) B^2, K^2 tau/3, R^2 tau^2/2, the GM formula
 /// (2 sigma^2 T_c/tau)[1 - (T_c/2tau)(3 - 4 e^{-tau/T_c} + e^{-2 tau/T_c})], and the sinusoid
-/// A^2 [sin^2(pi f tau)/(pi f tau)]^2. Absent term: 0. Throws Error if tau is not > 0.
+/// A^2 [sin^2(pi f tau)/(pi f tau)]^2 (Gauss-Markov summed over its entries). Absent term: 0.
+/// Throws Error if tau is not > 0.
 double continuous_avar(const NoiseTerms& terms, NoiseTerm term, double tau_s);
 double continuous_avar(const NoiseTerms& terms, double tau_s);
 
 /// Two-sided rate PSD S(f) of one term at f > 0 [Hz], in (rate unit)^2/Hz (THEORY.md section 2):
 /// quantization (4 Q^2/tau0) sin^2(pi f tau0) (needs tau0, f < 1/(2 tau0)); white N^2;
 /// flicker B^2 / (2 pi f); random walk (K / (2 pi f))^2; Gauss-Markov
-/// 2 sigma^2 T_c / (1 + (2 pi f T_c)^2). Ramp and sinusoid have no density (return 0; the
+/// 2 sigma^2 T_c / (1 + (2 pi f T_c)^2) summed over the entries. Ramp and sinusoid have no density (return 0; the
 /// sinusoid is a pair of lines of power A^2/4 each at +-f0). Throws Error if f is not > 0.
 double two_sided_psd(const NoiseTerms& terms, NoiseTerm term, double f_hz, double tau0_s);
 
@@ -189,16 +203,18 @@ struct ErrorModel {
   void validate(std::string_view what) const;
 };
 
-/// Checks one axis's terms (magnitudes > 0 and finite, tau_c > 0, 0 < f); throws Error naming
-/// `what` and the term.
+/// Checks one axis's terms (magnitudes > 0 and finite, tau_c > 0, 0 < f, at most
+/// kMaxGaussMarkov Gauss-Markov entries); throws Error naming `what` and the term.
 void validate(const NoiseTerms& terms, std::string_view what);
 
 /// Parses a model string as data sheets print it, e.g.
 ///   "N=0.15 deg/sqrt(h), B=3 deg/h, K=0.02 deg/h/sqrt(h)"
 /// Keys: Q, N, B, K, R, GM=<sigma> @ <tau_c>, SIN=<amplitude> @ <frequency>; every value with its
 /// unit (units.hpp), checked against the dimension the sensor's term needs. Returns SI.
-/// Throws Error naming the key, the text and what was expected (unknown key, repeated key,
-/// missing '=', wrong dimension, value not > 0).
+/// GM may repeat up to kMaxGaussMarkov times ("GM=0.01 deg/s @ 100 s, GM=0.003 deg/s @ 2000 s":
+/// a sum of Gauss-Markov processes, kept in the order written); every other key at most once.
+/// Throws Error naming the key, the text and what was expected (unknown key, repeated key, a
+/// fourth GM, missing '=', wrong dimension, value not > 0).
 NoiseTerms parse_noise_terms(std::string_view text, Sensor sensor);
 
 /// The terms as a model string in SI units (parse_noise_terms reads it back exactly).

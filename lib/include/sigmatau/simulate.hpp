@@ -21,7 +21,9 @@
 ///                  f >~ 1/(L tau0); flicker_band(L) gives the taus where the ADEV is flat.
 ///  - random walk:  b_k = b_{k-1} + K sqrt(tau0) w_k, b_{-1} = 0
 ///  - Gauss-Markov: g_k = phi g_{k-1} + sigma sqrt(1 - phi^2) w_k, phi = exp(-tau0/T_c),
-///                  g_{-1} ~ N(0, sigma^2) (stationary from the start)
+///                  g_{-1} ~ N(0, sigma^2) (stationary from the start); a sum of entries is
+///                  one such AR(1) per entry, each on its own random stream (entry 0 on the
+///                  Gauss-Markov stream, so a one-entry model gives the samples it always did)
 ///  - ramp:         y_k += R t_k;   sinusoid: y_k += A sin(2 pi f t_k + phase)
 /// Sample k is at t_k = k tau0 (rate and counts). Increment output: sample k is the integral
 /// over [k tau0, (k+1) tau0]: deterministic parts (truth, bias, ramp, sinusoid) are integrated

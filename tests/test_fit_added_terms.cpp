@@ -1,0 +1,111 @@
+// Terms real sensors add (issue 24): when no model of the five IEEE terms describes a curve,
+// the joint fit adds Gauss-Markov terms and a sinusoid (fit_added_terms.cpp) with weights that
+// include a relative model error (fit_model_error.cpp), and leaves out the shortest taus a
+// sensor's filter bends. Checked on exact curves (each point the exact sampled AVAR of the
+// truth, EDF N/m as a long log's): the truth is a model the fit can state, so the search must
+// find it to the precision of its refinement, and a curve no model states must be said so.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "exact_curve.hpp"
+#include "sigmatau/allan_curve.hpp"
+#include "sigmatau/fit.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace sigmatau;
+
+constexpr double kTau0 = 0.01;  // 100 Hz
+/// 2^20 samples (2.9 h at 100 Hz): 19 octave points, EDFs from 1e6 down, as the ADIS16405 log.
+constexpr std::int64_t kSamples = std::int64_t{1} << 20;
+
+NoiseFit fit_curve(const AllanCurve& curve) {
+  return fit_noise(curve, CurveSource{kTau0, kSamples + 1, 0}, FitOptions{});
+}
+
+/// The largest |model / curve - 1| over the fitted points.
+double largest_departure(const NoiseFit& fit, const AllanCurve& curve) {
+  const std::vector<double> model =
+      model_deviation(*fit.joint, curve, CurveSource{kTau0, kSamples + 1, 0}, FitOptions{});
+  double worst = 0;
+  for (std::size_t j = 0; j < curve.points.size(); ++j) {
+    if (std::isfinite(model[j])) worst = std::max(worst, std::abs(model[j] / curve.points[j].value.dev - 1));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("a Gauss-Markov bump no IEEE model describes is found at its correlation time") {
+  // White noise with a GM bump peaking near 1.9 T_c = 19 s, above the white line there
+  // (N^2 / tau = 1e-8 / 19 against the GM's ~0.34 sigma^2 = 3.4e-9 at its peak).
+  NoiseTerms truth;
+  truth.white = 1e-4;
+  truth.gauss_markov = {GaussMarkov{1e-4, 10.0}};
+  const AllanCurve curve = test::exact_oadev_curve(truth, kSamples, kTau0);
+  const NoiseFit fit = fit_curve(curve);
+  REQUIRE(fit.joint);
+  REQUIRE(fit.joint->gauss_markov.size() >= 1);
+  // The exact curve holds the truth: the refinement ends within 1e-5 of a quarter-octave grid
+  // step, so T_c and sigma come back to well within 1 % (what remains: the NNLS and the
+  // weights' convergence).
+  const auto& gm = fit.joint->gauss_markov.back();
+  CHECK(gm.tau_c_s == doctest::Approx(10.0).epsilon(0.01));
+  CHECK(gm.sigma == doctest::Approx(1e-4).epsilon(0.01));
+  CHECK(fit.joint->parameter(NoiseTerm::white).value == doctest::Approx(1e-4).epsilon(0.01));
+  CHECK(largest_departure(fit, curve) < 1e-3);
+  CHECK(fit.joint->p_value > kMisfitPValue);
+  CHECK(fit.joint->contradictions.empty());
+  CHECK_FALSE(fit.readings);
+}
+
+TEST_CASE("a sinusoid's narrow bump is found at its frequency") {
+  // A 0.5 Hz vibration of 5e-4 (rate unit) on white noise: its ADEV bump near 0.74 s stands
+  // 3x above the white line there.
+  NoiseTerms truth;
+  truth.white = 1e-4;
+  truth.sinusoid = Sinusoid{5e-4, 0.5, 0.0};
+  const AllanCurve curve = test::exact_oadev_curve(truth, kSamples, kTau0);
+  const NoiseFit fit = fit_curve(curve);
+  REQUIRE(fit.joint);
+  REQUIRE(fit.joint->sinusoid);
+  // As above: the truth is on the curve, the refinement ends far within 1 % of it.
+  CHECK(fit.joint->sinusoid->frequency_hz == doctest::Approx(0.5).epsilon(0.01));
+  CHECK(fit.joint->sinusoid->amplitude == doctest::Approx(5e-4).epsilon(0.01));
+  CHECK(largest_departure(fit, curve) < 1e-3);
+  CHECK(fit.joint->p_value > kMisfitPValue);
+}
+
+TEST_CASE("a curve the IEEE terms describe gets no added term and no model error") {
+  NoiseTerms truth;
+  truth.white = 1e-4;
+  truth.bias_instability = 3e-5;
+  truth.rate_random_walk = 1e-6;
+  const NoiseFit fit = fit_curve(test::exact_oadev_curve(truth, kSamples, kTau0));
+  REQUIRE(fit.joint);
+  CHECK(fit.joint->gauss_markov.empty());
+  CHECK_FALSE(fit.joint->sinusoid);
+  CHECK(fit.joint->model_error == 0);
+  CHECK(fit.joint->left_out_taus_s.empty());
+}
+
+TEST_CASE("a shortest tau bent away from every term is left out and said so") {
+  // White noise whose first point stands 30 % above it, as a sensor's sampling can raise it: no
+  // term raises m = 1 alone (quantization's 1/m^2 would raise m = 2 by a quarter as much), so
+  // with EDF 1e6 there every model is rejected until that point is left out.
+  NoiseTerms truth;
+  truth.white = 1e-4;
+  truth.rate_random_walk = 1e-6;
+  AllanCurve curve = test::exact_oadev_curve(truth, kSamples, kTau0);
+  curve.points.front().value.dev *= 1.3;
+  const NoiseFit fit = fit_curve(curve);
+  REQUIRE(fit.joint);
+  REQUIRE(fit.joint->left_out_taus_s.size() == 1);
+  CHECK(fit.joint->left_out_taus_s.front() == doctest::Approx(kTau0));
+  CHECK(fit.joint->parameter(NoiseTerm::white).value == doctest::Approx(1e-4).epsilon(0.01));
+  CHECK(largest_departure(fit, curve) < 1e-3);
+  CHECK_FALSE(left_out_warning(*fit.joint, "gx").empty());
+}
