@@ -30,7 +30,7 @@
 //  4. The model is kept when its criterion (the Gaussian deviance of the curve under its own
 //     widened weights, kappa at its maximum likelihood) + (parameters) ln n + priors is below
 //     the previous model's; the search stops at the first addition that does not lower it, or
-//     when kMaxGaussMarkovTerms GMs and a sinusoid are in.
+//     when kMaxGaussMarkov GMs and a sinusoid are in.
 // An added term counts two parameters (magnitude and T_c or f) in every penalty.
 #include "fit_added_terms.hpp"
 
@@ -39,6 +39,7 @@
 #include <cmath>
 #include <limits>
 
+#include "golden_section.hpp"
 #include "sigmatau/noise_model.hpp"
 
 namespace sigmatau::detail {
@@ -129,18 +130,7 @@ double refine(const Design& d, const std::vector<std::int64_t>& ms, double tau0_
     value_of(added, slot) = std::exp(x);
     return gls(design_with(d, ms, tau0_s, added), mask, sigma).chi2;
   };
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double a = std::log(lo), b = std::log(hi);
-  double x1 = b - r * (b - a), x2 = a + r * (b - a);
-  double f1 = chi2(x1), f2 = chi2(x2);
-  for (int i = 0; i < kRefineSteps; ++i) {
-    if (f1 <= f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = chi2(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = chi2(x2);
-    }
-  }
-  return std::exp(f1 <= f2 ? x1 : x2);
+  return std::exp(golden_section_minimum(chi2, std::log(lo), std::log(hi), kRefineSteps).x);
 }
 
 /// Iterates `model`'s weights with the model error under its basis and sets its criterion.
@@ -200,14 +190,14 @@ ExtendedModel extend_with_added_terms(const Design& d, const std::vector<std::in
   Added current;
   Mask ieee = candidates;  // the IEEE terms offered with the next addition
 
-  for (int round = 0; round < kMaxGaussMarkovTerms + 1; ++round) {
+  for (int round = 0; round < static_cast<int>(kMaxGaussMarkov) + 1; ++round) {
     // 1. Grids, Sigma fixed.
     Addition found;
     const auto try_addition = [&](const Added& trial, Slot slot, double step) {
       const double chi2 = gls(design_with(d, ms, tau0, trial), ieee | trial.bits(), best.fit.sigma).chi2;
       if (chi2 < found.chi2) found = {trial, slot, chi2, step};
     };
-    if (static_cast<int>(current.tau_c_s.size()) < kMaxGaussMarkovTerms) {
+    if (current.tau_c_s.size() < kMaxGaussMarkov) {
       const double step = std::exp2(1.0 / kGridPerOctave);
       for (double t = kGridShortest * tau0; t <= span; t *= step) {
         // A T_c within a grid step of one already in the model adds nothing new.

@@ -1,6 +1,6 @@
 #pragma once
 // Terms real sensors add to the five IEEE terms, in the joint fit (fit_added_terms.cpp): when
-// no model of the IEEE terms describes a curve, up to kMaxGaussMarkovTerms first-order
+// no model of the IEEE terms describes a curve, up to kMaxGaussMarkov (noise_model.hpp) first-order
 // Gauss-Markov processes and one sinusoid are added, each a column of the design (linear in
 // its squared magnitude at a fixed correlation time or frequency), the correlation time or
 // frequency searched on a grid and refined.
@@ -12,10 +12,6 @@
 #include "fit_select.hpp"
 
 namespace sigmatau::detail {
-
-/// Most Gauss-Markov terms the fit adds (GMWM practice: a real MEMS bias is often a sum of a
-/// few; the covariance basis models up to kMaxLagGaussMarkov).
-inline constexpr int kMaxGaussMarkovTerms = 3;
 
 /// The IEEE model is extended only when its goodness of fit is below this p value: a curve the
 /// five terms describe keeps them (simulated IEEE logs are not given added terms).
@@ -40,9 +36,6 @@ struct ExtendedModel {
   Iterated fit;          ///< weights with the model error (fit_model_error.hpp)
   double kappa = 0;      ///< relative model error of the weights
   double criterion = 0;  ///< widened deviance + (parameters) ln n + priors
-
-  /// Column of the sinusoid in the design (valid when sinusoid_hz is set).
-  Eigen::Index sinusoid_column() const { return kTermCount + static_cast<Eigen::Index>(tau_c_s.size()); }
 };
 
 /// Fits the rejected IEEE model `base` (a subset of `candidates`) with misspecification-aware

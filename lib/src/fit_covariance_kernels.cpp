@@ -188,8 +188,8 @@ double flicker_phase_covariance(double l) {
 PairCorrelation::PairCorrelation(std::int64_t ma, std::int64_t mb, double tau0_s,
                                  std::span<const double> gm_rates)
     : ma_(ma), mb_(mb), tau0_s_(tau0_s) {
-  if (gm_rates.size() > kMaxLagGaussMarkov) {
-    throw Error("covariance: at most " + std::to_string(kMaxLagGaussMarkov) +
+  if (gm_rates.size() > kMaxGaussMarkov) {
+    throw Error("covariance: at most " + std::to_string(kMaxGaussMarkov) +
                 " Gauss-Markov terms are modelled");
   }
   for (const double a : gm_rates) {
@@ -227,8 +227,8 @@ void PairCorrelation::evaluate(double lag, std::span<double> c) const {
   const std::size_t n_gm = gm_.size();
   // Gauss-Markov: one representation of G for the whole evaluation (p2 - 1/2 while every
   // |d| a < 1, else p2); they differ by scale l^2 / 2, which only cancels when used throughout.
-  std::array<bool, kMaxLagGaussMarkov> gm_minus_half{};
-  std::array<double, kMaxLagGaussMarkov> gm{};
+  std::array<bool, kMaxGaussMarkov> gm_minus_half{};
+  std::array<double, kMaxGaussMarkov> gm{};
   for (std::size_t g = 0; g < n_gm; ++g) gm_minus_half[g] = (u + span) * gm_[g].rate < kSeriesBelow;
   double q = 0, n = 0, k = 0, b = 0;
   for (int o = 0; o < 3; ++o) {
@@ -237,7 +237,7 @@ void PairCorrelation::evaluate(double lag, std::span<double> c) const {
     const double ay = std::abs(y);
     const bool near = ay < ms;
     double dq = 0, dn = 0, dk = 0, db = 0;
-    std::array<double, kMaxLagGaussMarkov> dgm{};
+    std::array<double, kMaxGaussMarkov> dgm{};
     const bool b_series = ay >= std::max(kFlickerInnerRatio * ms, kFlickerSeriesFloor);
     for (int i = 0; i < 3; ++i) {
       const double gi = kG[static_cast<std::size_t>(i)];

@@ -11,13 +11,12 @@
 #include <span>
 #include <vector>
 
+#include "sigmatau/noise_model.hpp"
+
 namespace sigmatau::detail {
 
 /// Number of stochastic terms without Gauss-Markov (Q, N, B, K).
 inline constexpr int kLagTerms = 4;
-/// Most Gauss-Markov terms one PairCorrelation models (GMWM practice: a real MEMS bias is
-/// described by a sum of a few).
-inline constexpr std::size_t kMaxLagGaussMarkov = 3;
 
 /// Lag sums of one pair of averaging factors over all lags -(n_a - 1) <= L <= n_b - 1.
 struct LagSums {

@@ -33,18 +33,6 @@ double guard_point_level(int points) {
 namespace detail {
 namespace {
 
-/// The AVAR of one Gauss-Markov term of a fit at m.
-double gauss_markov_avar(const GaussMarkovEstimate& e, std::int64_t m, const Sampling& sampling) {
-  NoiseTerms one;
-  one.gauss_markov = {GaussMarkov{e.sigma, e.tau_c_s}};
-  return sampled_avar(one, NoiseTerm::gauss_markov, m, sampling);
-}
-
-/// The whole model's AVAR at m: its IEEE terms and every added term.
-double model_avar(const ChannelFit& fit, std::int64_t m, const Sampling& sampling) {
-  return sampled_avar(fit.noise_terms(), m, sampling);
-}
-
 /// The EDF of each point's AVAR estimate under `fit`'s model: 2 A_j^2 / Var(s2_j), the variance
 /// from the exact covariance of the estimates (oavar_covariance, the joint fit's own weights).
 /// Not the curve's EDF: that follows the noise type identified at each point, which a
@@ -57,32 +45,14 @@ std::vector<double> model_edf(const ChannelFit& fit, const std::vector<AvarPoint
   for (const auto& q : points) edf.push_back(q.edf);
   std::vector<std::int64_t> m;
   for (const auto& q : points) m.push_back(q.m);
-  const auto gms = static_cast<Eigen::Index>(fit.gauss_markov.size());
-  Eigen::VectorXd theta = Eigen::VectorXd::Zero(kTermCount + gms);
-  {
-    const NoiseTerms t = fit.noise_terms();
-    const auto sq = [](const std::optional<double>& v) { return v ? *v * *v : 0.0; };
-    theta(0) = sq(t.quantization);
-    theta(1) = sq(t.white);
-    theta(2) = sq(t.bias_instability);
-    theta(3) = sq(t.rate_random_walk);
-    theta(4) = sq(t.rate_ramp);
-  }
-  std::vector<double> tau_c;
-  for (Eigen::Index g = 0; g < gms; ++g) {
-    const auto& e = fit.gauss_markov[static_cast<std::size_t>(g)];
-    theta(kTermCount + g) = e.sigma * e.sigma;
-    tau_c.push_back(e.tau_c_s);
-  }
-  if (theta.isZero()) return edf;
-  const auto basis = gms == 0 ? covariance_basis(m, source.n_phase_points, source.tau0_s)
-                              : std::make_shared<const CovarianceBasis>(build_covariance_basis(
-                                    m, source.n_phase_points, source.tau0_s, tau_c));
-  const Eigen::MatrixXd cov = basis->covariance(theta);
+  // A model without stochastic terms (a ramp or a sinusoid alone) has zero covariance: every
+  // point then keeps the curve's EDF below.
+  const NoiseTerms model = fit.noise_terms();
+  const Eigen::MatrixXd cov = oavar_covariance(model, m, source.n_phase_points, source.tau0_s);
   const Sampling sampling{source.tau0_s, source.flicker_taps, false};
   for (std::size_t j = 0; j < points.size(); ++j) {
     const double var = cov(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
-    const double avar = model_avar(fit, points[j].m, sampling);
+    const double avar = sampled_avar(model, points[j].m, sampling);
     if (var > 0 && avar > 0 && std::isfinite(var)) edf[j] = 2 * avar * avar / var;
   }
   return edf;
@@ -114,7 +84,7 @@ std::vector<Contradiction> check_against_curve(const ChannelFit& fit,
     if (!p.in_model && !p.from_model_floor && std::isfinite(p.upper_bound) && p.upper_bound >= 0) {
       NoiseTerms bounded;
       bounded.bias_instability = p.upper_bound;
-      const double reach = std::sqrt(model_avar(fit, low_point.m, sampling) +
+      const double reach = std::sqrt(sampled_avar(model, low_point.m, sampling) +
                                      sampled_avar(bounded, low_point.m, sampling));
       if (reach < at_min.low) {
         out.push_back({Contradiction::Kind::bound_below_minimum, p.term, low_point.tau_s, reach,
@@ -122,53 +92,28 @@ std::vector<Contradiction> check_against_curve(const ChannelFit& fit,
       }
     }
   }
-  for (const NoiseTerm term : fit.model_terms) {
-    if (term == NoiseTerm::bias_instability && floor_contradicted) continue;
+  // Each term alone, IEEE and added: its own exact sampled ADEV above the curve at a fitted tau.
+  const auto check_term = [&](NoiseTerm term, const NoiseTerms& one) {
     double worst = 1;
     Contradiction c{Contradiction::Kind::term_above_curve, term, 0, 0, 0, 0};
     for (std::size_t j = 0; j < points.size(); ++j) {
-      const auto& q = points[j];
-      const double own = std::sqrt(sampled_avar(model, term, q.m, sampling));
+      const double own = std::sqrt(sampled_avar(one, points[j].m, sampling));
       const double high = interval(j).high;
       if (own > worst * high) {
         worst = own / high;
-        c.tau_s = q.tau_s;
-        c.reported = own;
-        c.curve = q.dev;
-        c.curve_limit = high;
+        c = {Contradiction::Kind::term_above_curve, term, points[j].tau_s, own, points[j].dev, high};
       }
     }
     if (c.tau_s > 0) out.push_back(c);
+  };
+  for (const NoiseTerm term : fit.model_terms) {
+    if (term == NoiseTerm::bias_instability && floor_contradicted) continue;
+    check_term(term, only(model, term));
   }
-  for (const auto& e : fit.gauss_markov) {
-    double worst = 1;
-    Contradiction c{Contradiction::Kind::term_above_curve, NoiseTerm::gauss_markov, 0, 0, 0, 0};
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const double own = std::sqrt(gauss_markov_avar(e, points[j].m, sampling));
-      const double high = interval(j).high;
-      if (own > worst * high) {
-        worst = own / high;
-        c = {Contradiction::Kind::term_above_curve, NoiseTerm::gauss_markov, points[j].tau_s, own,
-             points[j].dev, high};
-      }
-    }
-    if (c.tau_s > 0) out.push_back(c);
+  for (std::size_t g = 0; g < model.gauss_markov.size(); ++g) {
+    check_term(NoiseTerm::gauss_markov, only_gauss_markov(model, g));
   }
-  if (fit.sinusoid) {
-    NoiseTerms one;
-    one.sinusoid = Sinusoid{fit.sinusoid->amplitude, fit.sinusoid->frequency_hz, 0.0};
-    double worst = 1;
-    Contradiction c{Contradiction::Kind::term_above_curve, NoiseTerm::sinusoid, 0, 0, 0, 0};
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const double own = std::sqrt(sampled_avar(one, NoiseTerm::sinusoid, points[j].m, sampling));
-      const double high = interval(j).high;
-      if (own > worst * high) {
-        worst = own / high;
-        c = {Contradiction::Kind::term_above_curve, NoiseTerm::sinusoid, points[j].tau_s, own, points[j].dev, high};
-      }
-    }
-    if (c.tau_s > 0) out.push_back(c);
-  }
+  if (model.sinusoid) check_term(NoiseTerm::sinusoid, only(model, NoiseTerm::sinusoid));
   return out;
 }
 

@@ -40,7 +40,7 @@ struct CovarianceBasis {
 /// Builds the basis: closed-form lag correlations of every term summed by quadrature between
 /// their kinks (fit_covariance_lagsum.cpp); O(1) memory, about 0.1 s per layout at any length.
 /// `gm_tau_c_s`: the correlation times of the Gauss-Markov terms modelled (at most
-/// kMaxLagGaussMarkov), whose squared sigmas follow the five linear terms in theta.
+/// kMaxGaussMarkov), whose squared sigmas follow the five linear terms in theta.
 CovarianceBasis build_covariance_basis(std::vector<std::int64_t> m, std::int64_t n_phase_points,
                                        double tau0_s, std::span<const double> gm_tau_c_s);
 

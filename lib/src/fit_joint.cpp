@@ -339,8 +339,8 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   out.bic = out.chi_squared + parameters * std::log(static_cast<double>(n));
   out.dof = static_cast<int>(n) - parameters;
   out.p_value = gof_p_value(out.chi_squared, out.dof);
+  const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
   {
-    const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
     double worst = -1;
     for (Eigen::Index j = 0; j < n; ++j) {
       const auto& p = points[static_cast<std::size_t>(j)];
@@ -353,79 +353,62 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
       }
     }
   }
+  // A kept column k: its squared parameter and variance, the Satterthwaite interval of the
+  // parameter (theta ~ theta_true chi2_nu / nu, nu = 2 theta^2 / var(theta)) when both are > 0,
+  // and the taus where it carries the curve (its modelled AVAR above the other terms' sum).
+  struct Kept {
+    double theta = 0, var = 0, value = 0, ci_low = 0, ci_high = 0;
+    double edf = std::numeric_limits<double>::quiet_NaN();
+    int leading_points = 0;
+  };
+  const auto kept = [&](Eigen::Index k) {
+    Kept e;
+    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
+    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
+    e.theta = final_fit.fit.theta(k);
+    e.var = cov(c, c);
+    e.value = std::sqrt(e.theta);
+    if (e.theta > 0 && e.var > 0) {
+      e.edf = 2 * e.theta * e.theta / e.var;
+      const Interval ci = chi_squared_interval(e.value, e.edf, level);
+      e.ci_low = ci.low;
+      e.ci_high = ci.high;
+    }
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double own = d.a(j, k) * e.theta;
+      if (own > model_avar(j) - own) ++e.leading_points;
+    }
+    return e;
+  };
   for (int k = 0; k < kTermCount; ++k) {
     ParameterEstimate p;
     p.term = kFitTerms[static_cast<std::size_t>(k)];
-    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
-    if (col != final_fit.fit.columns.end()) {
-      const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
-      const double theta = final_fit.fit.theta(k);
-      const double var = cov(c, c);
+    if (std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k) != final_fit.fit.columns.end()) {
+      const Kept e = kept(k);
       p.in_model = true;
       out.model_terms.push_back(p.term);
-      p.value = std::sqrt(theta);
-      if (theta > 0 && var > 0) {
-        // Satterthwaite: theta ~ theta_true chi2_nu / nu with nu = 2 theta^2 / var(theta).
-        p.edf = 2 * theta * theta / var;
-        const Interval ci = chi_squared_interval(p.value, p.edf, level);
-        p.ci_low = ci.low;
-        p.ci_high = ci.high;
-      } else {
+      p.value = e.value;
+      p.edf = e.edf;
+      p.ci_low = e.ci_low;
+      p.ci_high = e.ci_high;
+      if (!std::isfinite(e.edf)) {
         p.ci_low = 0;
-        p.ci_high = std::sqrt(theta + z_one_sided * std::sqrt(std::max(var, 0.0)));
+        p.ci_high = std::sqrt(e.theta + z_one_sided * std::sqrt(std::max(e.var, 0.0)));
       }
       p.upper_bound = p.ci_high;
-      // Where this term carries the curve: its modelled AVAR above the other kept terms' sum.
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double own = d.a(j, k) * theta;
-        const double all = d.a.row(j).dot(final_fit.fit.theta);
-        if (own > all - own) ++p.leading_points;
-      }
+      p.leading_points = e.leading_points;
     } else {
       p.upper_bound = std::sqrt(upper_bound(d, model, k, final_fit.fit.theta, *basis, z_one_sided));
     }
     out.parameters.push_back(p);
   }
-  const Eigen::VectorXd model_avar = d.a * final_fit.fit.theta;
   for (std::size_t g = 0; g < gm_tau_c.size(); ++g) {
-    const auto k = kTermCount + static_cast<Eigen::Index>(g);
-    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
-    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
-    const double theta = final_fit.fit.theta(k), var = cov(c, c);
-    GaussMarkovEstimate e;
-    e.tau_c_s = gm_tau_c[g];
-    e.sigma = std::sqrt(theta);
-    if (theta > 0 && var > 0) {
-      e.edf = 2 * theta * theta / var;
-      const Interval ci = chi_squared_interval(e.sigma, e.edf, level);
-      e.ci_low = ci.low;
-      e.ci_high = ci.high;
-    }
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double own = d.a(j, k) * theta;
-      if (own > model_avar(j) - own) ++e.leading_points;
-    }
-    out.gauss_markov.push_back(e);
+    const Kept e = kept(kTermCount + static_cast<Eigen::Index>(g));
+    out.gauss_markov.push_back({e.value, e.ci_low, e.ci_high, gm_tau_c[g], e.edf, e.leading_points});
   }
   if (sinusoid_hz) {
-    const auto k = kTermCount + static_cast<Eigen::Index>(gm_tau_c.size());
-    const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
-    const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
-    const double theta = final_fit.fit.theta(k), var = cov(c, c);
-    SinusoidEstimate e;
-    e.frequency_hz = *sinusoid_hz;
-    e.amplitude = std::sqrt(theta);
-    if (theta > 0 && var > 0) {
-      e.edf = 2 * theta * theta / var;
-      const Interval ci = chi_squared_interval(e.amplitude, e.edf, level);
-      e.ci_low = ci.low;
-      e.ci_high = ci.high;
-    }
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double own = d.a(j, k) * theta;
-      if (own > model_avar(j) - own) ++e.leading_points;
-    }
-    out.sinusoid = e;
+    const Kept e = kept(kTermCount + static_cast<Eigen::Index>(gm_tau_c.size()));
+    out.sinusoid = SinusoidEstimate{e.value, e.ci_low, e.ci_high, *sinusoid_hz, e.edf, e.leading_points};
   }
   std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
             [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });
@@ -436,21 +419,17 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   // `flicker`.
   if (!gm_tau_c.empty() || sinusoid_hz) {
     auto& b = out.parameters[static_cast<std::size_t>(term_index(NoiseTerm::bias_instability))];
-    {
-      if (b.in_model) b.flicker = b.value;
-      Eigen::Index j_floor = 0;
-      for (Eigen::Index j = 1; j < n; ++j) {
-        if (model_avar(j) < model_avar(j_floor)) j_floor = j;
-      }
-      const auto& p = points[static_cast<std::size_t>(j_floor)];
-      b.from_model_floor = true;
-      b.value = std::sqrt(model_avar(j_floor)) / kFlickerFloorFactor;
-      const Interval ci = chi_squared_interval(b.value, p.edf, level);
-      b.ci_low = ci.low;
-      b.ci_high = ci.high;
-      b.upper_bound = ci.high;
-      b.edf = p.edf;
-    }
+    if (b.in_model) b.flicker = b.value;
+    Eigen::Index j_floor = 0;
+    model_avar.minCoeff(&j_floor);
+    const auto& p = points[static_cast<std::size_t>(j_floor)];
+    b.from_model_floor = true;
+    b.value = std::sqrt(model_avar(j_floor)) / kFlickerFloorFactor;
+    const Interval ci = chi_squared_interval(b.value, p.edf, level);
+    b.ci_low = ci.low;
+    b.ci_high = ci.high;
+    b.upper_bound = ci.high;
+    b.edf = p.edf;
   }
   return out;
 }

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <limits>
 
+#include "golden_section.hpp"
+
 namespace sigmatau::detail {
 namespace {
 
@@ -50,20 +52,10 @@ double widened_deviance(const Design& d, const TermVector& theta, const Eigen::M
 
 double fit_model_error(const Design& d, const TermVector& theta, const Eigen::MatrixXd& sigma_model) {
   // Golden-section search in ln kappa; kappa = 0 (no model error) competes with the result.
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double a = std::log(kKappaMin), b = std::log(kKappaMax);
-  const auto f = [&](double x) { return widened_deviance(d, theta, sigma_model, std::exp(x)); };
-  double x1 = b - r * (b - a), x2 = a + r * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < kKappaSteps; ++i) {
-    if (f1 <= f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - r * (b - a), f1 = f(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + r * (b - a), f2 = f(x2);
-    }
-  }
-  const double best = f1 <= f2 ? x1 : x2;
-  return std::min(f1, f2) < widened_deviance(d, theta, sigma_model, 0) ? std::exp(best) : 0.0;
+  const GoldenMinimum best = golden_section_minimum(
+      [&](double x) { return widened_deviance(d, theta, sigma_model, std::exp(x)); }, std::log(kKappaMin),
+      std::log(kKappaMax), kKappaSteps);
+  return best.f < widened_deviance(d, theta, sigma_model, 0) ? std::exp(best.x) : 0.0;
 }
 
 WidenedFit iterate_widened(const Design& d, Mask mask, const CovarianceBasis& basis) {
