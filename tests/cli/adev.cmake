@@ -91,8 +91,10 @@ sigmatau_cli_test(NAME cli_time_found_adev EXIT 0
   ARGS adev ${found_dir}/sim.csv --taus 1)
 sigmatau_cli_test(NAME cli_time_found_analyze EXIT 0 STDOUT "wrote "
   ARGS analyze ${found_dir}/sim.csv --gyro-unit rad/s -o ${found_dir}/report --force)
+# A fixture, not DEPENDS: `ctest -R cli_time_found_adev` alone also runs the simulation first.
+set_tests_properties(cli_time_found_simulate PROPERTIES FIXTURES_SETUP cli_time_found_sim)
 set_tests_properties(cli_time_found_adev cli_time_found_analyze PROPERTIES
-                     DEPENDS cli_time_found_simulate)
+                     FIXTURES_REQUIRED cli_time_found_sim)
 sigmatau_cli_test(NAME cli_time_found_suffix_ns EXIT 0 STDOUT "400 samples at 100 Hz"
   STDERR "time column \"t_ms\" found by its name \\(stamps in ms, from its name"
   ARGS adev ${PROJECT_SOURCE_DIR}/tests/data/cli/stamps_ms_100Hz.csv --unit deg/s)
