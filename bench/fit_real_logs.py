@@ -40,8 +40,9 @@ def departures(points, key, intervals):
             continue
         dev = p["dev"]
         rel = abs(model / dev - 1)
-        low, high = intervals.get(p["m"], (dev, dev))
-        ok = rel <= 0.10 or low <= model <= high
+        # The interval relative to the point: fit's curve is in SI, adev's in the log's units.
+        low, high = intervals.get(p["m"], (1, 1))
+        ok = rel <= 0.10 or low <= model / dev <= high
         out.append((p["tau"], rel, ok))
     return out
 
@@ -71,8 +72,8 @@ def main():
                                "json"], capture_output=True, text=True, check=True)
         intervals = {}
         for curve in json.loads(adev.stdout)["results"]:
-            intervals[curve["channel"]] = {p["m"]: (p["ci_low"], p["ci_high"])
-                                           for p in curve["points"]}
+            intervals[curve["channel"]] = {p["m"]: (p["ci_low"] / p["dev"], p["ci_high"] / p["dev"])
+                                           for p in curve["points"] if p["dev"] > 0}
         for ch in doc["channels"]:
             joint = ch.get("joint", ch)
             readings = ch.get("reported_from") == "curve_readings"

@@ -40,8 +40,10 @@ struct ExtendedModel {
 
 /// Fits the rejected IEEE model `base` (a subset of `candidates`) with misspecification-aware
 /// weights (iterate_widened) and adds Gauss-Markov terms or a sinusoid, one at a time (the IEEE
-/// terms chosen again with each addition), while the criterion falls. The result holds no
-/// added term when the first addition does not lower it. `ms` are the design's factors.
+/// terms chosen again with each addition) or two at once when no single one helps, while the
+/// criterion falls, then drops any term the others stand in for (and searches forward again).
+/// The result holds no added term when no addition lowers the criterion. `ms` are the design's
+/// factors.
 ExtendedModel extend_with_added_terms(const Design& d, const std::vector<std::int64_t>& ms,
                                       const CurveSource& source, Mask base, Mask candidates,
                                       std::shared_ptr<const CovarianceBasis> basis);

@@ -58,9 +58,14 @@ double fit_model_error(const Design& d, const TermVector& theta, const Eigen::Ma
   return best.f < widened_deviance(d, theta, sigma_model, 0) ? std::exp(best.x) : 0.0;
 }
 
-WidenedFit iterate_widened(const Design& d, Mask mask, const CovarianceBasis& basis) {
+WidenedFit iterate_widened(const Design& d, Mask mask, const CovarianceBasis& basis, const Eigen::MatrixXd* start) {
   WidenedFit out;
-  out.fit = iterate(d, mask, basis);
+  if (start) {
+    out.fit.fit = gls(d, mask, *start);
+    out.fit.sigma = *start;
+  } else {
+    out.fit = iterate(d, mask, basis);
+  }
   Eigen::MatrixXd sigma_model = model_covariance(basis, out.fit.fit.theta, d.v);
   for (int it = 0; it < kMaxUpdates; ++it) {
     const double kappa = fit_model_error(d, out.fit.fit.theta, sigma_model);

@@ -24,8 +24,10 @@ double widened_deviance(const Design& d, const TermVector& theta, const Eigen::M
 /// The kappa in [0, 1] that minimises widened_deviance at theta (maximum likelihood).
 double fit_model_error(const Design& d, const TermVector& theta, const Eigen::MatrixXd& sigma_model);
 
-/// GLS of `mask` with weights iterated under the model and kappa re-estimated at each step.
-WidenedFit iterate_widened(const Design& d, Mask mask, const CovarianceBasis& basis);
+/// GLS of `mask` with weights iterated under the model and kappa re-estimated at each step,
+/// from the fit with the estimates' own covariance, or from the GLS weighted by `start`.
+WidenedFit iterate_widened(const Design& d, Mask mask, const CovarianceBasis& basis,
+                           const Eigen::MatrixXd* start = nullptr);
 
 /// (v - A theta)^T Sigma(theta)^-1 (v - A theta): the goodness-of-fit statistic from the
 /// estimates' own covariance, whatever weights the fit used.
