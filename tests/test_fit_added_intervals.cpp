@@ -13,7 +13,9 @@
 #include "../../lib/src/fit_added_intervals.hpp"  // internal interface under test
 #include "../../lib/src/fit_added_terms.hpp"
 #include "../../lib/src/golden_section.hpp"
+#include "exact_curve.hpp"
 #include "sigmatau/confidence.hpp"
+#include "sigmatau/fit.hpp"
 #include "sigmatau/noise_model.hpp"
 #include "sigmatau/taus.hpp"
 #include "test_support.hpp"
@@ -231,5 +233,38 @@ TEST_CASE("the sinusoid's cross term of the OAVAR covariance matches the direct 
       CHECK(c(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)) ==
             doctest::Approx(direct).epsilon(0.03).scale(0));
     }
+  }
+}
+
+TEST_CASE("a fit with added terms reports T_c and f intervals around its estimates") {
+  // Exact curves as in test_fit_added_terms.cpp (2^20 samples at 100 Hz): the estimates are the
+  // truth, and each interval holds its estimate and is not empty.
+  constexpr std::int64_t kSamples = std::int64_t{1} << 20;
+  const CurveSource source{kTau0, kSamples + 1, 0};
+  SUBCASE("Gauss-Markov") {
+    NoiseTerms truth;
+    truth.white = 1e-4;
+    truth.gauss_markov = {GaussMarkov{1e-4, 10.0}};
+    const NoiseFit fit = fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
+    REQUIRE(fit.joint);
+    REQUIRE(fit.joint->gauss_markov.size() == 1);
+    const auto& gm = fit.joint->gauss_markov.front();
+    CHECK(gm.tau_c_ci_low_s < gm.tau_c_s);
+    CHECK(gm.tau_c_ci_high_s > gm.tau_c_s);
+    CHECK(gm.ci_low < gm.sigma);
+    CHECK(gm.ci_high > gm.sigma);
+  }
+  SUBCASE("sinusoid") {
+    NoiseTerms truth;
+    truth.white = 1e-4;
+    truth.sinusoid = Sinusoid{5e-4, 0.5, 0.0};
+    const NoiseFit fit = fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
+    REQUIRE(fit.joint);
+    REQUIRE(fit.joint->sinusoid);
+    const auto& s = *fit.joint->sinusoid;
+    CHECK(s.frequency_ci_low_hz < s.frequency_hz);
+    CHECK(s.frequency_ci_high_hz > s.frequency_hz);
+    CHECK(s.ci_low < s.amplitude);
+    CHECK(s.ci_high > s.amplitude);
   }
 }
