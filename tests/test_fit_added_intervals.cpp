@@ -83,7 +83,7 @@ TEST_CASE("a Gauss-Markov sigma interval that lets T_c float is wider than the f
   const double fixed_half = 1.959964 * std::sqrt(fixed.theta(1, 1));
   CHECK(p.low < s2 - fixed_half);
   CHECK(p.high > s2 + fixed_half);
-  const ProfileInterval t = gauss_markov_tau_c_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms, kTau0, 0, gm.tau_c_s, q);
+  const ProfileInterval t = gauss_markov_tau_c_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms, gm.samples + 1, kTau0, 0, gm.tau_c_s, q);
   CHECK(t.low < gm.tau_c_s);
   CHECK(t.high > gm.tau_c_s);
 }
@@ -130,7 +130,7 @@ TEST_CASE("the floating-T_c interval covers a seeded Gauss-Markov sigma at its l
     {
       const ProfileInterval p = gauss_markov_sigma2_profile(d, SlowGm::kMask, sigma, gm.ms, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
       covered_profile += p.low <= gm.sigma * gm.sigma && gm.sigma * gm.sigma <= p.high;
-      const ProfileInterval t = gauss_markov_tau_c_profile(d, SlowGm::kMask, sigma, gm.ms, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
+      const ProfileInterval t = gauss_markov_tau_c_profile(d, SlowGm::kMask, sigma, gm.ms, gm.samples + 1, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
       covered_tau_c += t.low <= gm.tau_c_s && gm.tau_c_s <= t.high;
     }
     covered_fixed += covers(added_term_covariance(d, g, sigma, gm.ms, gm.samples + 1, kTau0, {}, {}));

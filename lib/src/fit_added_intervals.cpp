@@ -68,6 +68,9 @@ double noise_psd(const TermVector& theta, double tau0_s, const std::vector<doubl
 /// sigma^2 T_c is what a GM's falling side fixes, so sigma^2 at 8x its estimate pairs with a
 /// T_c near 1/8 of it, beyond any bound the bench's curves reach (ln T_c sd <= 0.3).
 constexpr double kProfileSpan = 8;
+/// A T_c interval stays within the range the search tries (fit_added_terms.cpp): from a quarter
+/// sample interval to the log's length. A bound there says the curve does not bound T_c.
+constexpr double kTauCShortest = 0.25;
 /// Golden-section steps of a profile's inner T_c search (the bracket of ln 64 to ~1e-5).
 constexpr int kProfileSteps = 30;
 /// Bisection steps of a bound, and the growth of its bracket (factor per step, steps at most).
@@ -87,13 +90,14 @@ double bisect(F&& rises, double inside, double outside) {
 }
 
 /// The bound of a one-dimensional profile `excess(ln x)` (its deviance above the minimum) on
-/// one side of `ln_x0`: the ln x where it reaches q, or the bracket's end when it never does.
+/// one side of `ln_x0`: the ln x where it reaches q, or the bracket's end (at most `ln_limit`)
+/// when it never does.
 template <class F>
-double profile_bound(F&& excess, double ln_x0, double q, double direction) {
+double profile_bound(F&& excess, double ln_x0, double q, double direction, double ln_limit) {
   const double step = direction * std::log(kBracketGrowth);
   double inside = ln_x0;
-  for (int i = 0; i < kBracketSteps; ++i) {
-    const double next = inside + step;
+  for (int i = 0; i < kBracketSteps && direction * (ln_limit - inside) > 0; ++i) {
+    const double next = direction > 0 ? std::min(inside + step, ln_limit) : std::max(inside + step, ln_limit);
     if (excess(next) > q) return bisect([&](double x) { return excess(x) > q; }, inside, next);
     inside = next;
   }
@@ -193,7 +197,7 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask, const Ei
   const double d_min = std::min(deviance(s2_hat), gls(d, mask, sigma).chi2);
   ProfileInterval out;
   const auto excess = [&](double ln_s2) { return deviance(std::exp(ln_s2)) - d_min; };
-  out.high = std::exp(profile_bound(excess, std::log(s2_hat), q, +1));
+  out.high = std::exp(profile_bound(excess, std::log(s2_hat), q, +1, std::numeric_limits<double>::infinity()));
   if (deviance(0) - d_min <= q) {
     out.low = 0;
   } else {
@@ -203,8 +207,8 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask, const Ei
 }
 
 ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eigen::MatrixXd& sigma,
-                                           const std::vector<std::int64_t>& ms, double tau0_s, std::size_t g,
-                                           double tau_c_s, double q) {
+                                           const std::vector<std::int64_t>& ms, std::int64_t n_phase_points,
+                                           double tau0_s, std::size_t g, double tau_c_s, double q) {
   const auto col = kTermCount + static_cast<Eigen::Index>(g);
   Design r = d;
   const auto deviance = [&](double ln_t) {
@@ -214,7 +218,10 @@ ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eig
   const double ln_t0 = std::log(tau_c_s);
   const double d_min = deviance(ln_t0);
   const auto excess = [&](double ln_t) { return deviance(ln_t) - d_min; };
-  return {std::exp(profile_bound(excess, ln_t0, q, -1)), std::exp(profile_bound(excess, ln_t0, q, +1))};
+  const double shortest = std::log(std::min(kTauCShortest * tau0_s, tau_c_s));
+  const double longest = std::log(std::max(static_cast<double>(n_phase_points - 1) * tau0_s, tau_c_s));
+  return {std::exp(profile_bound(excess, ln_t0, q, -1, shortest)),
+          std::exp(profile_bound(excess, ln_t0, q, +1, longest))};
 }
 
 }  // namespace sigmatau::detail

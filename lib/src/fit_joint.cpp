@@ -78,7 +78,9 @@
 // tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).
 //
-// Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance. Upper bounds of
+// Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance; an added term's
+// variance lets each T_c and f float and holds a sinusoid's scatter, and a Gauss-Markov term's
+// sigma and T_c get profile-likelihood intervals (fit_added_intervals.cpp). Upper bounds of
 // terms left out: test inversion with the variance under the bound (upper_bound).
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
@@ -322,14 +324,16 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     sinusoid_hz = ext.sinusoid_hz;
     model_error = ext.kappa;
   }
-  // With added terms every kept term's variance lets the T_c and f float, and a sinusoid's
-  // scatter is in it (fit_added_intervals.cpp); without them the GLS covariance as it was.
+  const Eigen::MatrixXd cov = theta_covariance(final_fit.fit);
+  // The added terms' variances let the T_c and f float, and a sinusoid's scatter is in them
+  // (fit_added_intervals.cpp). The IEEE terms keep the GLS covariance: with T_c floating, N's
+  // variance grows by its trade-off with a sub-sample GM (both white at long taus; N of a sensor
+  // averaging two samples: EDF 1.9 instead of 2.4e5), which is left for a decision.
   std::optional<AddedCovariance> added_cov;
   if (!gm_tau_c.empty() || sinusoid_hz) {
     added_cov = added_term_covariance(d, final_fit.fit, final_fit.sigma, ms, source.n_phase_points, source.tau0_s,
                                       gm_tau_c, sinusoid_hz);
   }
-  const Eigen::MatrixXd cov = added_cov ? added_cov->theta : theta_covariance(final_fit.fit);
   const double level = options.confidence_level;
   const double z_one_sided =
       boost::math::quantile(boost::math::normal_distribution<double>(), level);
@@ -381,7 +385,7 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
     const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
     e.theta = final_fit.fit.theta(k);
-    e.var = cov(c, c);
+    e.var = added_cov && k >= kTermCount ? added_cov->theta(c, c) : cov(c, c);
     e.value = std::sqrt(e.theta);
     if (e.theta > 0 && e.var > 0) {
       e.edf = 2 * e.theta * e.theta / e.var;
@@ -430,7 +434,8 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
       const Kept e = kept(kTermCount + static_cast<Eigen::Index>(g));
       const ProfileInterval s2 =
           gauss_markov_sigma2_profile(d, model, weights, ms, source.tau0_s, g, gm_tau_c[g], q);
-      const ProfileInterval t = gauss_markov_tau_c_profile(d, model, weights, ms, source.tau0_s, g, gm_tau_c[g], q);
+      const ProfileInterval t = gauss_markov_tau_c_profile(d, model, weights, ms, source.n_phase_points, source.tau0_s, g,
+                                                           gm_tau_c[g], q);
       out.gauss_markov.push_back({e.value, std::sqrt(s2.low), std::sqrt(s2.high), gm_tau_c[g], t.low, t.high, e.edf,
                                   e.leading_points});
     }
