@@ -3,7 +3,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Cholesky>
-
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -65,7 +64,8 @@ TEST_CASE("a Gauss-Markov sigma interval that lets T_c float is wider than the f
   const Iterated fit = iterate(gm.d, SlowGm::kMask, basis);
   // The exact curve: the fit returns the truth (to the weights' convergence).
   REQUIRE(std::sqrt(fit.fit.theta(kTermCount)) == doctest::Approx(gm.sigma).epsilon(1e-6).scale(0));
-  const AddedCovariance fixed = added_term_covariance(gm.d, fit.fit, fit.sigma, gm.ms, gm.samples + 1, kTau0, {}, {});
+  const AddedCovariance fixed =
+      added_term_covariance(gm.d, fit.fit, fit.sigma, gm.ms, gm.samples + 1, kTau0, {}, {});
   const AddedCovariance floating =
       added_term_covariance(gm.d, fit.fit, fit.sigma, gm.ms, gm.samples + 1, kTau0, tau_c, {});
   // Columns: N, GM. A Schur complement can only add variance; here T_c's uncertainty dominates
@@ -79,11 +79,13 @@ TEST_CASE("a Gauss-Markov sigma interval that lets T_c float is wider than the f
   // The profile interval (T_c floating, the fit's weights) holds the truth (the exact curve's
   // estimate) and is wider than the fixed-T_c Wald interval, theta +- 1.96 sd.
   const double s2 = gm.sigma * gm.sigma, q = 1.959964 * 1.959964;
-  const ProfileInterval p = gauss_markov_sigma2_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms, kTau0, 0, gm.tau_c_s, q);
+  const ProfileInterval p =
+      gauss_markov_sigma2_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms, kTau0, 0, gm.tau_c_s, q);
   const double fixed_half = 1.959964 * std::sqrt(fixed.theta(1, 1));
   CHECK(p.low < s2 - fixed_half);
   CHECK(p.high > s2 + fixed_half);
-  const ProfileInterval t = gauss_markov_tau_c_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms, gm.samples + 1, kTau0, 0, gm.tau_c_s, q);
+  const ProfileInterval t = gauss_markov_tau_c_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms,
+                                                       gm.samples + 1, kTau0, 0, gm.tau_c_s, q);
   CHECK(t.low < gm.tau_c_s);
   CHECK(t.high > gm.tau_c_s);
 }
@@ -116,7 +118,8 @@ TEST_CASE("the floating-T_c interval covers a seeded Gauss-Markov sigma at its l
       d.a.col(kTermCount) = gauss_markov_column(gm.ms, kTau0, std::exp(x));
       return gls(d, SlowGm::kMask, sigma).chi2;
     };
-    const GoldenMinimum best = golden_section_minimum(chi2_at, std::log(gm.tau_c_s / 4), std::log(gm.tau_c_s * 4), 40);
+    const GoldenMinimum best =
+        golden_section_minimum(chi2_at, std::log(gm.tau_c_s / 4), std::log(gm.tau_c_s * 4), 40);
     d.a.col(kTermCount) = gauss_markov_column(gm.ms, kTau0, std::exp(best.x));
     const Gls g = gls(d, SlowGm::kMask, sigma);
     if (!(g.theta(kTermCount) > 0)) continue;
@@ -128,19 +131,24 @@ TEST_CASE("the floating-T_c interval covers a seeded Gauss-Markov sigma at its l
       return ci.low <= gm.sigma && gm.sigma <= ci.high;
     };
     {
-      const ProfileInterval p = gauss_markov_sigma2_profile(d, SlowGm::kMask, sigma, gm.ms, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
+      const ProfileInterval p = gauss_markov_sigma2_profile(
+          d, SlowGm::kMask, sigma, gm.ms, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
       covered_profile += p.low <= gm.sigma * gm.sigma && gm.sigma * gm.sigma <= p.high;
-      const ProfileInterval t = gauss_markov_tau_c_profile(d, SlowGm::kMask, sigma, gm.ms, gm.samples + 1, kTau0, 0, std::exp(best.x), 1.959964 * 1.959964);
+      const ProfileInterval t =
+          gauss_markov_tau_c_profile(d, SlowGm::kMask, sigma, gm.ms, gm.samples + 1, kTau0, 0,
+                                     std::exp(best.x), 1.959964 * 1.959964);
       covered_tau_c += t.low <= gm.tau_c_s && gm.tau_c_s <= t.high;
     }
-    covered_fixed += covers(added_term_covariance(d, g, sigma, gm.ms, gm.samples + 1, kTau0, {}, {}));
-    covered_floating +=
-        covers(added_term_covariance(d, g, sigma, gm.ms, gm.samples + 1, kTau0, {std::exp(best.x)}, {}));
+    covered_fixed +=
+        covers(added_term_covariance(d, g, sigma, gm.ms, gm.samples + 1, kTau0, {}, {}));
+    covered_floating += covers(
+        added_term_covariance(d, g, sigma, gm.ms, gm.samples + 1, kTau0, {std::exp(best.x)}, {}));
   }
   REQUIRE(draws == kDraws);
   const double fixed_rate = static_cast<double>(covered_fixed) / draws;
   const double floating_rate = static_cast<double>(covered_floating) / draws;
-  MESSAGE("coverage fixed T_c ", fixed_rate, ", floating ", floating_rate, ", profile ", covered_profile, ", T_c ", covered_tau_c, " over ", draws, " draws");
+  MESSAGE("coverage fixed T_c ", fixed_rate, ", floating ", floating_rate, ", profile ",
+          covered_profile, ", T_c ", covered_tau_c, " over ", draws, " draws");
   // 95 % nominal; 200 draws give a binomial sd of 1.5 %: 90 % is 3 sd below. The fixed-T_c
   // interval misses T_c's share (measured 54.5 %); the delta method on the floating variance
   // gets most of it (89 %: sigma^2 against ln T_c is far from linear at a 30 % sd), the profile
@@ -168,14 +176,18 @@ double direct_cross_covariance(std::int64_t ma, std::int64_t mb, std::int64_t n_
   const auto u_of = [&](std::int64_t m, double phase) {
     std::vector<double> u(static_cast<std::size_t>(samples), 0.0);
     const std::int64_t n = n_phase - 2 * m;
-    const auto y = [&](std::int64_t i) { return std::cos(2 * std::numbers::pi * nu * static_cast<double>(i) + phase); };
+    const auto y = [&](std::int64_t i) {
+      return std::cos(2 * std::numbers::pi * nu * static_cast<double>(i) + phase);
+    };
     // ds_k = (sum_{i=k+m}^{k+2m-1} y_i - sum_{i=k}^{k+m-1} y_i) / m, rate samples 0-based.
     double first = 0, second = 0;
     for (std::int64_t i = 0; i < m; ++i) first += y(i), second += y(i + m);
     for (std::int64_t k = 0; k < n; ++k) {
       const double ds = (second - first) / static_cast<double>(m);
-      for (std::int64_t i = k; i < k + m; ++i) u[static_cast<std::size_t>(i)] -= ds / static_cast<double>(m);
-      for (std::int64_t i = k + m; i < k + 2 * m; ++i) u[static_cast<std::size_t>(i)] += ds / static_cast<double>(m);
+      for (std::int64_t i = k; i < k + m; ++i)
+        u[static_cast<std::size_t>(i)] -= ds / static_cast<double>(m);
+      for (std::int64_t i = k + m; i < k + 2 * m; ++i)
+        u[static_cast<std::size_t>(i)] += ds / static_cast<double>(m);
       first += y(k + m) - y(k);
       second += y(k + 2 * m) - y(k + m);
     }
@@ -188,7 +200,8 @@ double direct_cross_covariance(std::int64_t ma, std::int64_t mb, std::int64_t n_
     for (std::int64_t i = 0; i < samples; ++i) {
       for (std::int64_t l = -lags; l <= lags; ++l) {
         if (i + l < 0 || i + l >= samples) continue;
-        sum += ua[static_cast<std::size_t>(i)] * ub[static_cast<std::size_t>(i + l)] * r[static_cast<std::size_t>(std::abs(l))];
+        sum += ua[static_cast<std::size_t>(i)] * ub[static_cast<std::size_t>(i + l)] *
+               r[static_cast<std::size_t>(std::abs(l))];
       }
     }
   }
@@ -226,7 +239,8 @@ TEST_CASE("the sinusoid's cross term of the OAVAR covariance matches the direct 
     theta(kTermCount + 1) = 1.0;  // A^2
     const Eigen::MatrixXd c = sinusoid_cross_covariance(ms, kPhase, kTau0, {tc}, f_hz, theta);
     std::vector<double> r;
-    for (int l = 0; l <= 200; ++l) r.push_back(theta(kTermCount) * std::pow(phi, l));  // phi^200 ~ 4e-18
+    for (int l = 0; l <= 200; ++l)
+      r.push_back(theta(kTermCount) * std::pow(phi, l));  // phi^200 ~ 4e-18
     for (std::size_t a = 0; a < ms.size(); ++a) {
       const double direct = direct_cross_covariance(ms[a], ms[a], kPhase, 0.01, r);
       // As above, plus the lags' support (~T_c) next to n.
@@ -245,7 +259,8 @@ TEST_CASE("a fit with added terms reports T_c and f intervals around its estimat
     NoiseTerms truth;
     truth.white = 1e-4;
     truth.gauss_markov = {GaussMarkov{1e-4, 10.0}};
-    const NoiseFit fit = fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
+    const NoiseFit fit =
+        fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
     REQUIRE(fit.joint);
     REQUIRE(fit.joint->gauss_markov.size() == 1);
     const auto& gm = fit.joint->gauss_markov.front();
@@ -258,7 +273,8 @@ TEST_CASE("a fit with added terms reports T_c and f intervals around its estimat
     NoiseTerms truth;
     truth.white = 1e-4;
     truth.sinusoid = Sinusoid{5e-4, 0.5, 0.0};
-    const NoiseFit fit = fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
+    const NoiseFit fit =
+        fit_noise(test::exact_oadev_curve(truth, kSamples, kTau0), source, FitOptions{});
     REQUIRE(fit.joint);
     REQUIRE(fit.joint->sinusoid);
     const auto& s = *fit.joint->sinusoid;

@@ -16,7 +16,8 @@
 // 2. A sinusoid's scatter. With y = s + w (s = A cos(2 pi f tau0 k + phi), w the noise) the
 //    OAVAR at m is sum_k (ds_k + dw_k)^2 / (2 n_m); besides the noise's own term it holds the
 //    cross term C_m = sum_k ds_k dw_k / n_m, of mean 0 and, averaged over the phase phi, with
-//      Cov(C_a, C_b) = (A^2 / 2) / (n_a n_b) sum_L w_ab(L) Re[e^{-i 2 pi nu L} conj(G_a) G_b] c_ab(L),
+//      Cov(C_a, C_b) = (A^2 / 2) / (n_a n_b) sum_L w_ab(L) Re[e^{-i 2 pi nu L} conj(G_a) G_b]
+//      c_ab(L),
 //    nu = f tau0, G_m the transfer function of the d^m kernel, c_ab the noise's lag covariance
 //    of the d's and w_ab(L) the pairs at lag L. For sums over many periods and lags short next
 //    to n (w_ab ~ min(n_a, n_b)), sum_L c_ab(L) e^{-i 2 pi nu L} = S(nu) G_a conj(G_b), so
@@ -28,16 +29,14 @@
 //    (sum_k ds_k^2 / n about its phase average) is O(1 / n^2) and left out.
 #include "fit_added_intervals.hpp"
 
-#include "golden_section.hpp"
-
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
-
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "fit_added_terms.hpp"
+#include "golden_section.hpp"
 #include "sigmatau/error.hpp"
 
 namespace sigmatau::detail {
@@ -50,12 +49,13 @@ constexpr double kLogStep = 1e-4;
 
 /// The noise's two-sided per-sample PSD at nu cycles per sample (fit_covariance.cpp's unit PSDs
 /// times the squared parameters; the ramp is deterministic and has none).
-double noise_psd(const TermVector& theta, double tau0_s, const std::vector<double>& tau_c_s, double nu) {
+double noise_psd(const TermVector& theta, double tau0_s, const std::vector<double>& tau_c_s,
+                 double nu) {
   const double s = std::sin(std::numbers::pi * nu);
   double psd = theta(0) * 4 * s * s / (tau0_s * tau0_s)  // Q
-               + theta(1) / tau0_s                        // N
-               + theta(2) / (2 * std::abs(s))             // B (Kasdin, untruncated)
-               + theta(3) * tau0_s / (4 * s * s);         // K
+               + theta(1) / tau0_s                       // N
+               + theta(2) / (2 * std::abs(s))            // B (Kasdin, untruncated)
+               + theta(3) * tau0_s / (4 * s * s);        // K
   for (std::size_t g = 0; g < tau_c_s.size(); ++g) {
     const double phi = std::exp(-tau0_s / tau_c_s[g]);
     psd += theta(kTermCount + static_cast<Eigen::Index>(g)) * (1 - phi * phi) /
@@ -97,7 +97,8 @@ double profile_bound(F&& excess, double ln_x0, double q, double direction, doubl
   const double step = direction * std::log(kBracketGrowth);
   double inside = ln_x0;
   for (int i = 0; i < kBracketSteps && direction * (ln_limit - inside) > 0; ++i) {
-    const double next = direction > 0 ? std::min(inside + step, ln_limit) : std::max(inside + step, ln_limit);
+    const double next =
+        direction > 0 ? std::min(inside + step, ln_limit) : std::max(inside + step, ln_limit);
     if (excess(next) > q) return bisect([&](double x) { return excess(x) > q; }, inside, next);
     inside = next;
   }
@@ -115,9 +116,10 @@ Eigen::MatrixXd scaled_inverse(const Eigen::MatrixXd& info) {
 
 }  // namespace
 
-Eigen::MatrixXd sinusoid_cross_covariance(const std::vector<std::int64_t>& ms, std::int64_t n_phase_points,
-                                          double tau0_s, const std::vector<double>& tau_c_s,
-                                          double frequency_hz, const TermVector& theta) {
+Eigen::MatrixXd sinusoid_cross_covariance(const std::vector<std::int64_t>& ms,
+                                          std::int64_t n_phase_points, double tau0_s,
+                                          const std::vector<double>& tau_c_s, double frequency_hz,
+                                          const TermVector& theta) {
   const auto n = static_cast<Eigen::Index>(ms.size());
   const Eigen::Index s_col = kTermCount + static_cast<Eigen::Index>(tau_c_s.size());
   if (!(theta.size() > s_col)) throw Error("covariance: no sinusoid in the parameters");
@@ -134,28 +136,33 @@ Eigen::MatrixXd sinusoid_cross_covariance(const std::vector<std::int64_t>& ms, s
   return cov;
 }
 
-AddedCovariance added_term_covariance(const Design& d, const Gls& fit, const Eigen::MatrixXd& weights_sigma,
-                                      const std::vector<std::int64_t>& ms, std::int64_t n_phase_points,
-                                      double tau0_s, const std::vector<double>& tau_c_s,
+AddedCovariance added_term_covariance(const Design& d, const Gls& fit,
+                                      const Eigen::MatrixXd& weights_sigma,
+                                      const std::vector<std::int64_t>& ms,
+                                      std::int64_t n_phase_points, double tau0_s,
+                                      const std::vector<double>& tau_c_s,
                                       std::optional<double> sinusoid_hz) {
   const auto rows = d.a.rows();
   const auto kept = static_cast<Eigen::Index>(fit.columns.size());
   const auto gms = static_cast<Eigen::Index>(tau_c_s.size());
   const Eigen::Index extra = gms + (sinusoid_hz ? 1 : 0);
   Eigen::MatrixXd j(rows, kept + extra);
-  for (Eigen::Index c = 0; c < kept; ++c) j.col(c) = d.a.col(fit.columns[static_cast<std::size_t>(c)]);
+  for (Eigen::Index c = 0; c < kept; ++c)
+    j.col(c) = d.a.col(fit.columns[static_cast<std::size_t>(c)]);
   const double up = std::exp(kLogStep), down = std::exp(-kLogStep);
   for (Eigen::Index g = 0; g < gms; ++g) {
     const double t = tau_c_s[static_cast<std::size_t>(g)];
-    j.col(kept + g) = fit.theta(kTermCount + g) *
-                      (gauss_markov_column(ms, tau0_s, t * up) - gauss_markov_column(ms, tau0_s, t * down)) /
-                      (2 * kLogStep);
+    j.col(kept + g) =
+        fit.theta(kTermCount + g) *
+        (gauss_markov_column(ms, tau0_s, t * up) - gauss_markov_column(ms, tau0_s, t * down)) /
+        (2 * kLogStep);
   }
   if (sinusoid_hz) {
     const double f = *sinusoid_hz;
-    j.col(kept + gms) = fit.theta(kTermCount + gms) *
-                        (sinusoid_column(ms, tau0_s, f * up) - sinusoid_column(ms, tau0_s, f * down)) /
-                        (2 * kLogStep);
+    j.col(kept + gms) =
+        fit.theta(kTermCount + gms) *
+        (sinusoid_column(ms, tau0_s, f * up) - sinusoid_column(ms, tau0_s, f * down)) /
+        (2 * kLogStep);
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(weights_sigma);
   if (llt.info() != Eigen::Success) throw Error("fit: AVAR covariance is not positive definite");
@@ -164,7 +171,8 @@ AddedCovariance added_term_covariance(const Design& d, const Gls& fit, const Eig
   if (sinusoid_hz) {
     // Sandwich: the estimates' covariance is the weights' plus the cross term C:
     // B J^T W (Sigma_w + C) W J B = B + B (Jw^T L^-1 C L^-T Jw) B.
-    const Eigen::MatrixXd c = sinusoid_cross_covariance(ms, n_phase_points, tau0_s, tau_c_s, *sinusoid_hz, fit.theta);
+    const Eigen::MatrixXd c =
+        sinusoid_cross_covariance(ms, n_phase_points, tau0_s, tau_c_s, *sinusoid_hz, fit.theta);
     const Eigen::MatrixXd lc = llt.matrixL().solve(c);
     const Eigen::MatrixXd cw = llt.matrixL().solve(lc.transpose());  // L^-1 C L^-T (C symmetric)
     cov += cov * (jw.transpose() * cw * jw) * cov;
@@ -178,9 +186,10 @@ AddedCovariance added_term_covariance(const Design& d, const Gls& fit, const Eig
   return out;
 }
 
-ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask, const Eigen::MatrixXd& sigma,
-                                            const std::vector<std::int64_t>& ms, double tau0_s, std::size_t g,
-                                            double tau_c_s, double q) {
+ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask,
+                                            const Eigen::MatrixXd& sigma,
+                                            const std::vector<std::int64_t>& ms, double tau0_s,
+                                            std::size_t g, double tau_c_s, double q) {
   const auto col = kTermCount + static_cast<Eigen::Index>(g);
   const Mask others = mask & ~(1u << col);
   // The deviance at sigma^2 = s2, minimised over ln T_c and the other terms.
@@ -191,13 +200,15 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask, const Ei
       return gls(r, others, sigma).chi2;
     };
     const double ln_t0 = std::log(tau_c_s), span = std::log(kProfileSpan);
-    return std::min(at(ln_t0), golden_section_minimum(at, ln_t0 - span, ln_t0 + span, kProfileSteps).f);
+    return std::min(at(ln_t0),
+                    golden_section_minimum(at, ln_t0 - span, ln_t0 + span, kProfileSteps).f);
   };
   const double s2_hat = gls(d, mask, sigma).theta(col);
   const double d_min = std::min(deviance(s2_hat), gls(d, mask, sigma).chi2);
   ProfileInterval out;
   const auto excess = [&](double ln_s2) { return deviance(std::exp(ln_s2)) - d_min; };
-  out.high = std::exp(profile_bound(excess, std::log(s2_hat), q, +1, std::numeric_limits<double>::infinity()));
+  out.high = std::exp(
+      profile_bound(excess, std::log(s2_hat), q, +1, std::numeric_limits<double>::infinity()));
   if (deviance(0) - d_min <= q) {
     out.low = 0;
   } else {
@@ -207,8 +218,9 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask, const Ei
 }
 
 ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eigen::MatrixXd& sigma,
-                                           const std::vector<std::int64_t>& ms, std::int64_t n_phase_points,
-                                           double tau0_s, std::size_t g, double tau_c_s, double q) {
+                                           const std::vector<std::int64_t>& ms,
+                                           std::int64_t n_phase_points, double tau0_s,
+                                           std::size_t g, double tau_c_s, double q) {
   const auto col = kTermCount + static_cast<Eigen::Index>(g);
   Design r = d;
   const auto deviance = [&](double ln_t) {
@@ -219,7 +231,8 @@ ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eig
   const double d_min = deviance(ln_t0);
   const auto excess = [&](double ln_t) { return deviance(ln_t) - d_min; };
   const double shortest = std::log(std::min(kTauCShortest * tau0_s, tau_c_s));
-  const double longest = std::log(std::max(static_cast<double>(n_phase_points - 1) * tau0_s, tau_c_s));
+  const double longest =
+      std::log(std::max(static_cast<double>(n_phase_points - 1) * tau0_s, tau_c_s));
   return {std::exp(profile_bound(excess, ln_t0, q, -1, shortest)),
           std::exp(profile_bound(excess, ln_t0, q, +1, longest))};
 }
