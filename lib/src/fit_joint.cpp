@@ -331,8 +331,8 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   // averaging two samples: EDF 1.9 instead of 2.4e5), which is left for a decision.
   std::optional<AddedCovariance> added_cov;
   if (!gm_tau_c.empty() || sinusoid_hz) {
-    added_cov = added_term_covariance(d, final_fit.fit, final_fit.sigma, ms, source.n_phase_points, source.tau0_s,
-                                      gm_tau_c, sinusoid_hz);
+    added_cov = added_term_covariance(d, final_fit.fit, final_fit.sigma, ms, source.n_phase_points,
+                                      source.tau0_s, gm_tau_c, sinusoid_hz);
   }
   const double level = options.confidence_level;
   const double z_one_sided =
@@ -426,25 +426,26 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     // sinusoid's scatter), T_c floating in sigma's (fit_added_intervals.cpp).
     Eigen::MatrixXd weights = final_fit.sigma;
     if (sinusoid_hz) {
-      weights += sinusoid_cross_covariance(ms, source.n_phase_points, source.tau0_s, gm_tau_c, *sinusoid_hz,
-                                           final_fit.fit.theta);
+      weights += sinusoid_cross_covariance(ms, source.n_phase_points, source.tau0_s, gm_tau_c,
+                                           *sinusoid_hz, final_fit.fit.theta);
     }
     const double q = z_two_sided * z_two_sided;
     for (std::size_t g = 0; g < gm_tau_c.size(); ++g) {
       const Kept e = kept(kTermCount + static_cast<Eigen::Index>(g));
       const ProfileInterval s2 =
           gauss_markov_sigma2_profile(d, model, weights, ms, source.tau0_s, g, gm_tau_c[g], q);
-      const ProfileInterval t = gauss_markov_tau_c_profile(d, model, weights, ms, source.n_phase_points, source.tau0_s, g,
-                                                           gm_tau_c[g], q);
-      out.gauss_markov.push_back({e.value, std::sqrt(s2.low), std::sqrt(s2.high), gm_tau_c[g], t.low, t.high, e.edf,
-                                  e.leading_points});
+      const ProfileInterval t = gauss_markov_tau_c_profile(
+          d, model, weights, ms, source.n_phase_points, source.tau0_s, g, gm_tau_c[g], q);
+      out.gauss_markov.push_back({e.value, std::sqrt(s2.low), std::sqrt(s2.high), gm_tau_c[g],
+                                  t.low, t.high, e.edf, e.leading_points});
     }
   }
   if (sinusoid_hz) {
     const Kept e = kept(kTermCount + static_cast<Eigen::Index>(gm_tau_c.size()));
     const auto [f_low, f_high] = log_normal(*sinusoid_hz, added_cov->ln_frequency_sd);
     out.sinusoid =
-        SinusoidEstimate{e.value, e.ci_low, e.ci_high, *sinusoid_hz, f_low, f_high, e.edf, e.leading_points};
+        SinusoidEstimate{e.value, e.ci_low, e.ci_high, *sinusoid_hz, f_low,
+                         f_high, e.edf, e.leading_points};
   }
   std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
             [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });
