@@ -4,7 +4,9 @@ sinusoid, a filtered white noise. For each seed, `sigmatau simulate` writes 3 gy
 100 Hz, f64) and `sigmatau fit --format json` fits them; per profile the script counts how often
 the joint fit selects the true model (the same IEEE terms and the same number of Gauss-Markov
 terms and sinusoids) and how often each added term's 95 % interval covers its truth (a fitted GM
-matched to the true GM of nearest T_c; the interval is on sigma with T_c held at its estimate).
+matched to the true GM of nearest T_c; the sigma interval lets T_c float), and how often the
+T_c and f intervals (JSON tau_c_ci_low_s / tau_c_ci_high_s, frequency_ci_low_hz /
+frequency_ci_high_hz; "-" for a build without them) cover theirs.
 
 Usage: bench/fit_added_terms_sim.py --sigmatau BUILD/cli/sigmatau [--seeds 10] [--work DIR]
 Writes a markdown table to stdout (bench/results_fit_added_terms.md).
@@ -40,11 +42,12 @@ def main():
     args = ap.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="sigmatau-added-")
     print("| profile | channels | true model selected | GM sigma covered | SIN amplitude covered | "
-          "median |T_c or f error| | p >= 0.001 | read-outs reported |")
-    print("|---|---|---|---|---|---|---|---|")
+          "T_c or f covered | median |T_c or f error| | p >= 0.001 | read-outs reported |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, model, ieee, gms, sin in PROFILES:
         channels = true_model = p_ok = readings = 0
         gm_cover = gm_total = sin_cover = sin_total = 0
+        pos_cover = pos_total = 0
         position_errors = []
         for seed in range(1, args.seeds + 1):
             out = os.path.join(work, f"{name}_{seed}.f64")
@@ -71,16 +74,23 @@ def main():
                     gm_total += 1
                     gm_cover += g["ci_low"] <= s_true * DEG_H <= g["ci_high"]
                     position_errors.append(abs(g["tau_c_s"] / t_true - 1))
+                    if "tau_c_ci_low_s" in g:
+                        pos_total += 1
+                        pos_cover += g["tau_c_ci_low_s"] <= t_true <= g["tau_c_ci_high_s"]
                 if fitted_sin and sin:
                     sin_total += 1
                     sin_cover += fitted_sin["ci_low"] <= sin[0] * DEG_H <= fitted_sin["ci_high"]
                     position_errors.append(abs(fitted_sin["frequency_hz"] / sin[1] - 1))
+                    if "frequency_ci_low_hz" in fitted_sin:
+                        pos_total += 1
+                        pos_cover += fitted_sin["frequency_ci_low_hz"] <= sin[1] <= fitted_sin["frequency_ci_high_hz"]
         position_errors.sort()
         median = position_errors[len(position_errors) // 2] if position_errors else float("nan")
         gm_text = f"{gm_cover} of {gm_total}" if gm_total else "-"
         sin_text = f"{sin_cover} of {sin_total}" if sin_total else "-"
+        pos_text = f"{pos_cover} of {pos_total}" if pos_total else "-"
         print(f"| {name}: {model} | {channels} | {true_model} ({100 * true_model / channels:.0f} %) | "
-              f"{gm_text} | {sin_text} | {100 * median:.1f} % | {p_ok} | {readings} |")
+              f"{gm_text} | {sin_text} | {pos_text} | {100 * median:.1f} % | {p_ok} | {readings} |")
     return 0
 
 

@@ -152,7 +152,9 @@ nlohmann::json gauss_markov_json(const ChannelFit& fit, Sensor sensor) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& g : fit.gauss_markov) {
     nlohmann::json j = {{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
-                        {"tau_c_s", g.tau_c_s}, {"leading_points", g.leading_points},
+                        {"tau_c_s", g.tau_c_s}, {"tau_c_ci_low_s", g.tau_c_ci_low_s},
+                        {"tau_c_ci_high_s", g.tau_c_ci_high_s},
+                        {"leading_points", g.leading_points},
                         {"unit", std::string(units_of(NoiseTerm::gauss_markov, sensor).si)}};
     if (std::isfinite(g.edf)) j["edf"] = g.edf;
     out.push_back(j);
@@ -164,7 +166,10 @@ nlohmann::json sinusoid_json(const ChannelFit& fit, Sensor sensor) {
   if (!fit.sinusoid) return nullptr;
   const auto& s = *fit.sinusoid;
   nlohmann::json j = {{"amplitude", s.amplitude}, {"ci_low", s.ci_low}, {"ci_high", s.ci_high},
-                      {"frequency_hz", s.frequency_hz}, {"leading_points", s.leading_points},
+                      {"frequency_hz", s.frequency_hz},
+                      {"frequency_ci_low_hz", s.frequency_ci_low_hz},
+                      {"frequency_ci_high_hz", s.frequency_ci_high_hz},
+                      {"leading_points", s.leading_points},
                       {"unit", std::string(units_of(NoiseTerm::sinusoid, sensor).si)}};
   if (std::isfinite(s.edf)) j["edf"] = s.edf;
   return j;
@@ -336,8 +341,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const std::string sheet(u.sheet);
     const double f = convert(1.0, u.si, sheet);
     const std::string sym = "GM" + std::to_string(g + 1);
-    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, T_c = %.4g s\n", sym.c_str(),
-                  "Gauss-Markov sigma", e.ci_low * f, e.sigma * f, e.ci_high * f, sheet.c_str(), e.tau_c_s);
+    std::snprintf(line, sizeof line,
+                  "%-3s %-23s %13.5g %13.5g %13.5g  %s, T_c = %.4g s [%.4g, %.4g]\n", sym.c_str(),
+                  "Gauss-Markov sigma", e.ci_low * f, e.sigma * f, e.ci_high * f, sheet.c_str(),
+                  e.tau_c_s, e.tau_c_ci_low_s, e.tau_c_ci_high_s);
     out << line;
   }
   if (fit.sinusoid) {
@@ -345,8 +352,10 @@ void table_for(std::ostringstream& out, const std::string& name, Sensor sensor,
     const TermUnits u = units_of(NoiseTerm::sinusoid, sensor);
     const std::string sheet(u.sheet);
     const double f = convert(1.0, u.si, sheet);
-    std::snprintf(line, sizeof line, "%-3s %-23s %13.5g %13.5g %13.5g  %s, f = %.4g Hz\n", "SIN",
-                  "sinusoid amplitude", e.ci_low * f, e.amplitude * f, e.ci_high * f, sheet.c_str(), e.frequency_hz);
+    std::snprintf(line, sizeof line,
+                  "%-3s %-23s %13.5g %13.5g %13.5g  %s, f = %.6g Hz [%.6g, %.6g]\n", "SIN",
+                  "sinusoid amplitude", e.ci_low * f, e.amplitude * f, e.ci_high * f, sheet.c_str(),
+                  e.frequency_hz, e.frequency_ci_low_hz, e.frequency_ci_high_hz);
     out << line;
   }
   if (fit.model_error > 0) {

@@ -102,7 +102,8 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   json gauss_markov = json::array();
   for (const auto& g : fit.gauss_markov) {
     gauss_markov.push_back({{"sigma", g.sigma}, {"ci_low", g.ci_low}, {"ci_high", g.ci_high},
-                            {"tau_c_s", g.tau_c_s}, {"edf", number_or_null(g.edf)},
+                            {"tau_c_s", g.tau_c_s}, {"tau_c_ci_low_s", g.tau_c_ci_low_s},
+                            {"tau_c_ci_high_s", g.tau_c_ci_high_s}, {"edf", number_or_null(g.edf)},
                             {"leading_points", g.leading_points},
                             {"unit", std::string(si_unit(NoiseTerm::gauss_markov, sensor))}});
   }
@@ -146,7 +147,8 @@ json fit_json(const std::string& name, Sensor sensor, const ChannelFit& fit, dou
   if (fit.sinusoid) {
     const auto& e = *fit.sinusoid;
     sinusoid = {{"amplitude", e.amplitude}, {"ci_low", e.ci_low}, {"ci_high", e.ci_high},
-                {"frequency_hz", e.frequency_hz}, {"edf", number_or_null(e.edf)},
+                {"frequency_hz", e.frequency_hz}, {"frequency_ci_low_hz", e.frequency_ci_low_hz},
+                {"frequency_ci_high_hz", e.frequency_ci_high_hz}, {"edf", number_or_null(e.edf)},
                 {"leading_points", e.leading_points},
                 {"unit", std::string(si_unit(NoiseTerm::sinusoid, sensor))}};
     NoiseTerms one;

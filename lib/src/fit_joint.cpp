@@ -78,7 +78,9 @@
 // tactical, K added by stage 2 in ~3-7 %; weak flicker, B's floor shows only in the last
 // octaves, where stage 1 misses it in ~29 % (N alone).
 //
-// Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance. Upper bounds of
+// Intervals of kept terms: Satterthwaite chi-squared on theta's GLS variance; an added term's
+// variance lets each T_c and f float and holds a sinusoid's scatter, and a Gauss-Markov term's
+// sigma and T_c get profile-likelihood intervals (fit_added_intervals.cpp). Upper bounds of
 // terms left out: test inversion with the variance under the bound (upper_bound).
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
@@ -93,7 +95,9 @@
 #include <map>
 #include <mutex>
 #include <tuple>
+#include <utility>
 
+#include "fit_added_intervals.hpp"
 #include "fit_added_terms.hpp"
 #include "fit_internal.hpp"
 #include "fit_select.hpp"
@@ -321,9 +325,24 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     model_error = ext.kappa;
   }
   const Eigen::MatrixXd cov = theta_covariance(final_fit.fit);
+  // The added terms' variances let the T_c and f float, and a sinusoid's scatter is in them
+  // (fit_added_intervals.cpp). The IEEE terms keep the GLS covariance: with T_c floating, N's
+  // variance grows by its trade-off with a sub-sample GM (both white at long taus; N of a sensor
+  // averaging two samples: EDF 1.9 instead of 2.4e5), which is left for a decision.
+  std::optional<AddedCovariance> added_cov;
+  if (!gm_tau_c.empty() || sinusoid_hz) {
+    added_cov = added_term_covariance(d, final_fit.fit, final_fit.sigma, ms, source.n_phase_points,
+                                      source.tau0_s, gm_tau_c, sinusoid_hz);
+  }
   const double level = options.confidence_level;
   const double z_one_sided =
       boost::math::quantile(boost::math::normal_distribution<double>(), level);
+  // A log-normal interval of T_c or f at the fit's level from the sd of its logarithm.
+  const double z_two_sided =
+      boost::math::quantile(boost::math::normal_distribution<double>(), (1 + level) / 2);
+  const auto log_normal = [&](double value, double ln_sd) {
+    return std::pair{value * std::exp(-z_two_sided * ln_sd), value * std::exp(z_two_sided * ln_sd)};
+  };
 
   ChannelFit out;
   out.method = FitMethod::joint;
@@ -366,7 +385,7 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     const auto col = std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k);
     const auto c = static_cast<Eigen::Index>(col - final_fit.fit.columns.begin());
     e.theta = final_fit.fit.theta(k);
-    e.var = cov(c, c);
+    e.var = added_cov && k >= kTermCount ? added_cov->theta(c, c) : cov(c, c);
     e.value = std::sqrt(e.theta);
     if (e.theta > 0 && e.var > 0) {
       e.edf = 2 * e.theta * e.theta / e.var;
@@ -402,13 +421,31 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
     }
     out.parameters.push_back(p);
   }
-  for (std::size_t g = 0; g < gm_tau_c.size(); ++g) {
-    const Kept e = kept(kTermCount + static_cast<Eigen::Index>(g));
-    out.gauss_markov.push_back({e.value, e.ci_low, e.ci_high, gm_tau_c[g], e.edf, e.leading_points});
+  if (!gm_tau_c.empty()) {
+    // A GM's sigma and T_c: profile-likelihood intervals under the fit's last weights (with a
+    // sinusoid's scatter), T_c floating in sigma's (fit_added_intervals.cpp).
+    Eigen::MatrixXd weights = final_fit.sigma;
+    if (sinusoid_hz) {
+      weights += sinusoid_cross_covariance(ms, source.n_phase_points, source.tau0_s, gm_tau_c,
+                                           *sinusoid_hz, final_fit.fit.theta);
+    }
+    const double q = z_two_sided * z_two_sided;
+    for (std::size_t g = 0; g < gm_tau_c.size(); ++g) {
+      const Kept e = kept(kTermCount + static_cast<Eigen::Index>(g));
+      const ProfileInterval s2 =
+          gauss_markov_sigma2_profile(d, model, weights, ms, source.tau0_s, g, gm_tau_c[g], q);
+      const ProfileInterval t = gauss_markov_tau_c_profile(
+          d, model, weights, ms, source.n_phase_points, source.tau0_s, g, gm_tau_c[g], q);
+      out.gauss_markov.push_back({e.value, std::sqrt(s2.low), std::sqrt(s2.high), gm_tau_c[g],
+                                  t.low, t.high, e.edf, e.leading_points});
+    }
   }
   if (sinusoid_hz) {
     const Kept e = kept(kTermCount + static_cast<Eigen::Index>(gm_tau_c.size()));
-    out.sinusoid = SinusoidEstimate{e.value, e.ci_low, e.ci_high, *sinusoid_hz, e.edf, e.leading_points};
+    const auto [f_low, f_high] = log_normal(*sinusoid_hz, added_cov->ln_frequency_sd);
+    out.sinusoid =
+        SinusoidEstimate{e.value, e.ci_low, e.ci_high, *sinusoid_hz, f_low,
+                         f_high, e.edf, e.leading_points};
   }
   std::sort(out.gauss_markov.begin(), out.gauss_markov.end(),
             [](const GaussMarkovEstimate& a, const GaussMarkovEstimate& b) { return a.tau_c_s < b.tau_c_s; });

@@ -167,9 +167,11 @@ struct ParameterEstimate {
 /// One first-order Gauss-Markov term of a joint fit (fit_added_terms.cpp's search), SI.
 struct GaussMarkovEstimate {
   double sigma = 0;    ///< stationary standard deviation [rad/s | m/s^2]
-  double ci_low = 0;   ///< interval of sigma at the fit's level (T_c held at its estimate)
+  double ci_low = 0;   ///< interval of sigma at the fit's level (T_c estimated too)
   double ci_high = 0;
-  double tau_c_s = 0;  ///< correlation time [s] (searched on a grid and refined; no interval)
+  double tau_c_s = 0;  ///< correlation time [s] (searched on a grid and refined)
+  double tau_c_ci_low_s = 0;   ///< interval of T_c at the fit's level [s] (log-normal)
+  double tau_c_ci_high_s = 0;
   /// Effective degrees of freedom of sigma^2 (Satterthwaite), NaN when not applicable.
   double edf = std::numeric_limits<double>::quiet_NaN();
   /// Fitted taus at which this term's AVAR exceeds the sum of the other terms'.
@@ -179,9 +181,11 @@ struct GaussMarkovEstimate {
 /// A sinusoid of a joint fit (fit_added_terms.cpp's search), SI.
 struct SinusoidEstimate {
   double amplitude = 0;     ///< A [rad/s | m/s^2]
-  double ci_low = 0;        ///< interval of A at the fit's level (f held at its estimate)
+  double ci_low = 0;        ///< interval of A at the fit's level (f estimated too)
   double ci_high = 0;
-  double frequency_hz = 0;  ///< f [Hz] (searched on a grid and refined; no interval)
+  double frequency_hz = 0;  ///< f [Hz] (searched on a grid and refined)
+  double frequency_ci_low_hz = 0;   ///< interval of f at the fit's level [Hz] (log-normal)
+  double frequency_ci_high_hz = 0;
   double edf = std::numeric_limits<double>::quiet_NaN();
   int leading_points = 0;   ///< fitted taus where its AVAR exceeds the other terms' sum
 };
