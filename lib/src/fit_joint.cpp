@@ -351,7 +351,6 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   // Goodness of fit from the estimates' own covariance, whatever the weights.
   out.chi_squared = model_error > 0 ? own_chi2(d, final_fit.fit.theta, *basis) : final_fit.fit.chi2;
   out.model_error = model_error;
-  // A Gauss-Markov term has two parameters: sigma and T_c.
   // An added term has two parameters: its magnitude and its T_c or frequency.
   const int parameters = count_positive(final_fit.fit.theta) + static_cast<int>(gm_tau_c.size()) +
                          (sinusoid_hz ? 1 : 0);
