@@ -113,9 +113,7 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
       break;
     case Statistic::mdev:
     case Statistic::tdev:
-      for (std::size_t t = 0; t < factors.size(); ++t) {
-        sums[t] = detail::modified_sum(series, factors[t], counts[t]);
-      }
+      sums = detail::modified_sums(series, factors, counts);
       break;
   }
 

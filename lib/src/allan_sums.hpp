@@ -65,6 +65,12 @@ double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::in
 /// sum_{j < count} V(j)^2 (MDEV, TDEV), V carried by a compensated running sum.
 double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t count);
 
+/// modified_sum for each m (counts[t] >= 1 terms), the same bit for bit, computed for up to
+/// eight factors at once (one per vector lane: each factor's running sum is a serial chain of
+/// additions, so several chains keep the floating-point units busy).
+std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
+                                  std::span<const std::int64_t> counts);
+
 /// The 2(m-1) terms of the total variance whose 2m-point window reaches past either end of the
 /// phase (i = 1..m-1 and i = L-m+1..L-1): sum of (x*[i-m] - 2x*[i] + x*[i+m])^2. The other
 /// N - 2m terms are exactly the OADEV terms. Requires 2m <= L.
