@@ -86,6 +86,16 @@ TEST_CASE("modified sums in lock step equal each factor alone, bit for bit") {
   const std::vector<std::int64_t> mixed = {1, 3, 7, 1000, 33333, 66666, 99000, 99666, 99999,
                                            100000, 2, 5};
   check_alone_equals_together(series, Statistic::mdev, mixed);
+  // Shared among threads (groups of factors on each): the same bits.
+  for (const unsigned threads : {2u, 3u}) {
+    const auto one = compute_deviation(series, Statistic::mdev, octave, 1);
+    const auto shared = compute_deviation(series, Statistic::mdev, octave, threads);
+    REQUIRE(shared.size() == one.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      INFO("threads = " << threads << ", m = " << one[i].m);
+      CHECK(shared[i].dev == one[i].dev);
+    }
+  }
 }
 
 TEST_CASE("factor order does not change any value") {

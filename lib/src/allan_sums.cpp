@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <future>
+#include <span>
 #include <vector>
 
 #include "allan_dd.hpp"
@@ -226,30 +228,28 @@ double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t coun
   return modified_finish(h, l, m, count, start, 0, lead.data(), trail.data());
 }
 
-std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
-                                  std::span<const std::int64_t> counts) {
-  SIGMATAU_ASSERT(m.size() == counts.size(), "one count per factor");
-  const double* h = series.hi().data();
-  const double* l = series.lo().data();
-  std::vector<double> sums(m.size(), 0.0);
+namespace {
+
+/// modified_sums for the factors m (at most kFactorLanes, ascending), into sums.
+void modified_group(const double* h, const double* l, std::span<const std::int64_t> m,
+                    std::span<const std::int64_t> counts, std::span<double> sums) {
   // modified_start needs kBlock doubles of lead.
   std::vector<double> lead(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
   std::vector<double> trail(static_cast<std::size_t>(kChunk * kFactorLanes));
-  // Groups of up to kFactorLanes factors, in the order given (ascending factors have similar
-  // term counts, so few lanes idle).
-  for (std::size_t g0 = 0; g0 < m.size(); g0 += kFactorLanes) {
-    const std::size_t G = std::min<std::size_t>(kFactorLanes, m.size() - g0);
+  {
+    const std::size_t G = m.size();
+    SIGMATAU_ASSERT(G <= kFactorLanes, "a group has at most kFactorLanes factors");
     ModifiedState state[kFactorLanes];
     std::int64_t full[kFactorLanes] = {};  // blocks with kBlock steps, done in lock step
     std::int64_t most = 0;
     LockStep lanes{};
     double block_total[kFactorLanes];
     for (std::size_t g = 0; g < G; ++g) {
-      state[g] = modified_start(h, l, m[g0 + g], lead.data());
+      state[g] = modified_start(h, l, m[g], lead.data());
       lanes.s[g] = state[g].s;
       lanes.c[g] = state[g].c;
       // Block b has kBlock steps when (b + 1) kBlock <= count - 1 (modified_finish's steps).
-      full[g] = G > 1 ? (counts[g0 + g] - 1) / kBlock : 0;
+      full[g] = G > 1 ? (counts[g] - 1) / kBlock : 0;
       most = std::max(most, full[g]);
     }
     // A finished factor's lane idles on zeros (and is not read again).
@@ -259,7 +259,7 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
       for (std::int64_t j = b * kBlock; j < (b + 1) * kBlock; j += kChunk) {
         for (std::size_t g = 0; g < G; ++g) {
           if (b >= full[g]) continue;
-          const std::int64_t mg = m[g0 + g];
+          const std::int64_t mg = m[g];
           fill_d2_lane(h, l, mg, j + mg, lead.data() + g);
           fill_d2_lane(h, l, mg, j, trail.data() + g);
         }
@@ -280,10 +280,45 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
       }
     }
     for (std::size_t g = 0; g < G; ++g) {
-      sums[g0 + g] = modified_finish(h, l, m[g0 + g], counts[g0 + g], state[g], full[g] * kBlock,
+      sums[g] = modified_finish(h, l, m[g], counts[g], state[g], full[g] * kBlock,
                                      lead.data(), trail.data());
     }
   }
+}
+
+}  // namespace
+
+std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
+                                  std::span<const std::int64_t> counts, unsigned threads) {
+  SIGMATAU_ASSERT(m.size() == counts.size(), "one count per factor");
+  const double* h = series.hi().data();
+  const double* l = series.lo().data();
+  std::vector<double> sums(m.size(), 0.0);
+  // Groups of near-equal size, at most kFactorLanes factors, consecutive in the order given
+  // (ascending factors have similar term counts, so few lanes idle); with threads, a multiple
+  // of their number, so each thread gets about the same number of factors.
+  const std::size_t workers = std::max(1u, threads);
+  std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
+  if (workers > 1) groups = std::min(m.size(), (groups + workers - 1) / workers * workers);
+  auto run = [&](std::size_t k) {
+    const std::size_t a = m.size() * k / groups;
+    const std::size_t b = m.size() * (k + 1) / groups;
+    modified_group(h, l, m.subspan(a, b - a), counts.subspan(a, b - a),
+                   std::span(sums).subspan(a, b - a));
+  };
+  if (workers == 1 || groups < 2) {
+    for (std::size_t k = 0; k < groups; ++k) run(k);
+    return sums;
+  }
+  // Group k on thread k mod workers; the first share on this thread.
+  std::vector<std::future<void>> others;
+  for (std::size_t w = 1; w < std::min(workers, groups); ++w) {
+    others.push_back(std::async(std::launch::async, [&run, w, workers, groups] {
+      for (std::size_t k = w; k < groups; k += workers) run(k);
+    }));
+  }
+  for (std::size_t k = 0; k < groups; k += workers) run(k);
+  for (auto& f : others) f.get();
   return sums;
 }
 

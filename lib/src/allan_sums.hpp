@@ -67,9 +67,10 @@ double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t coun
 
 /// modified_sum for each m (counts[t] >= 1 terms), the same bit for bit, computed for up to
 /// eight factors at once (one per vector lane: each factor's running sum is a serial chain of
-/// additions, so several chains keep the floating-point units busy).
+/// additions, so several chains keep the floating-point units busy). With threads > 1 the
+/// groups of factors are shared among that many threads (the results do not depend on it).
 std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
-                                  std::span<const std::int64_t> counts);
+                                  std::span<const std::int64_t> counts, unsigned threads = 1);
 
 /// The 2(m-1) terms of the total variance whose 2m-point window reaches past either end of the
 /// phase (i = 1..m-1 and i = L-m+1..L-1): sum of (x*[i-m] - 2x*[i] + x*[i+m])^2. The other
