@@ -219,15 +219,6 @@ void modified_block_end(LockStep& state, double* block_total) {
 
 }  // namespace
 
-double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t count) {
-  const double* h = series.hi().data();
-  const double* l = series.lo().data();
-  std::vector<double> lead(static_cast<std::size_t>(kBlock));
-  std::vector<double> trail(static_cast<std::size_t>(kBlock));
-  const ModifiedState start = modified_start(h, l, m, lead.data());
-  return modified_finish(h, l, m, count, start, 0, lead.data(), trail.data());
-}
-
 namespace {
 
 /// modified_sums for the factors m (at most kFactorLanes, ascending), into sums.
