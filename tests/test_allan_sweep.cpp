@@ -1,6 +1,8 @@
 // The overlapping sweep (lib/src/allan_sweep.cpp) computes runs of octave factors together:
 // fused kernels that share the phase points of neighbouring factors, and for factors from 4096
-// on, chains that walk the compact phase m0 points at a time. Each factor's sum must be the
+// on, chains that walk the compact phase m0 points at a time. The modified sums (MDEV, TDEV;
+// lib/src/allan_sums.cpp) run up to eight factors in lock step, one per vector lane, and finish
+// each factor's last blocks alone. Each factor's sum must be the
 // same, bit for bit, as when that factor is computed alone (one-factor kernels, block sweep):
 // same terms, same lanes, same order of additions. Any difference is a bug, so the comparisons
 // are exact.
@@ -68,6 +70,32 @@ TEST_CASE("mixed factor lists: octave runs, non-octave factors and runs broken b
   const std::vector<std::int64_t> m = {1, 3, 6, 7, 64, 128, 5000, 12288, 24576, 40000};
   check_alone_equals_together(series, Statistic::oadev, m);
   check_alone_equals_together(series, Statistic::ohdev, m);
+}
+
+TEST_CASE("modified sums in lock step equal each factor alone, bit for bit") {
+  // 17 octave factors: two groups of eight in lock step and one alone; N - 3m + 1 is not a
+  // multiple of the 1024-step blocks, so each factor leaves the lock step at a different block
+  // (its lane then idles) and ends in a partial block of its own.
+  const PhaseSeries series = PhaseSeries::from_rate(gyro_like(300001, 5), 0.01);
+  std::vector<std::int64_t> octave;
+  for (std::int64_t m = 1; m <= 65536; m *= 2) octave.push_back(m);
+  check_alone_equals_together(series, Statistic::mdev, octave);
+  check_alone_equals_together(series, Statistic::tdev, octave);
+  // Non-octave factors; the second group of four has 3003, 1005, 6 and 3 terms (two full
+  // blocks, then none).
+  const std::vector<std::int64_t> mixed = {1, 3, 7, 1000, 33333, 66666, 99000, 99666, 99999,
+                                           100000, 2, 5};
+  check_alone_equals_together(series, Statistic::mdev, mixed);
+  // Shared among threads (groups of factors on each): the same bits.
+  for (const unsigned threads : {2u, 3u}) {
+    const auto one = compute_deviation(series, Statistic::mdev, octave, 1);
+    const auto shared = compute_deviation(series, Statistic::mdev, octave, threads);
+    REQUIRE(shared.size() == one.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      INFO("threads = " << threads << ", m = " << one[i].m);
+      CHECK(shared[i].dev == one[i].dev);
+    }
+  }
 }
 
 TEST_CASE("factor order does not change any value") {

@@ -69,7 +69,7 @@ std::int64_t term_count(Statistic statistic, std::int64_t m, std::int64_t n_phas
 }
 
 std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statistic statistic,
-                                              std::span<const std::int64_t> m) {
+                                              std::span<const std::int64_t> m, unsigned threads) {
   for (const std::int64_t factor : m) {
     if (!(factor >= 1)) {
       throw Error("averaging factor must be >= 1, got " + std::to_string(factor));
@@ -113,9 +113,7 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
       break;
     case Statistic::mdev:
     case Statistic::tdev:
-      for (std::size_t t = 0; t < factors.size(); ++t) {
-        sums[t] = detail::modified_sum(series, factors[t], counts[t]);
-      }
+      sums = detail::modified_sums(series, factors, counts, threads);
       break;
   }
 

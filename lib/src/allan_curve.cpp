@@ -91,7 +91,8 @@ namespace detail {
 
 AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
                                 const TauSpec& taus, double confidence_level, EdfModel edf_model,
-                                const std::function<NoiseIdentification(std::int64_t)>& identify) {
+                                const std::function<NoiseIdentification(std::int64_t)>& identify,
+                                unsigned threads) {
   if (!(confidence_level > 0.0 && confidence_level < 1.0)) {
     throw Error("confidence level must be between 0 and 1 (e.g. 0.683), got " +
                 std::to_string(confidence_level));
@@ -108,7 +109,7 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
   // Where few averages remain, the type identified at a factor that depends on the record and
   // on m alone (never on which other taus were asked for); each such factor identified once.
   std::vector<std::pair<std::int64_t, int>> kept;  // (factor, alpha)
-  for (DeviationPoint point : compute_deviation(series, statistic, factors)) {
+  for (DeviationPoint point : compute_deviation(series, statistic, factors, threads)) {
     detail::check_representable(statistic, point);
     ConfidencePoint confidence;
     const std::int64_t averages = (series.size() - 1) / point.m;
@@ -143,7 +144,8 @@ namespace {
 
 /// compute_allan_curve; with `beside`, the one-pass identification of the smallest factors runs
 /// on a thread of its own while this one sweeps the deviations (both only read the phase; the
-/// identification is wanted from the first confidence interval on, after the sweep).
+/// identification is wanted from the first confidence interval on, after the sweep), and the
+/// MDEV / TDEV sums take a second thread too (the identification is the shorter of the two).
 AllanCurve allan_curve(const PhaseSeries& series, Statistic statistic, const TauSpec& taus,
                        double confidence_level, EdfModel edf_model, bool beside) {
   // One buffer for the averaged series of every tau (sized by the first, smallest m): fresh
@@ -182,7 +184,8 @@ AllanCurve allan_curve(const PhaseSeries& series, Statistic statistic, const Tau
           capacity = points;
         }
         return detail::identify_noise_with(series, statistic, m, scratch.get());
-      });
+      },
+      beside ? 2u : 1u);
 }
 
 }  // namespace

@@ -20,9 +20,11 @@ void check_representable(Statistic statistic, const DeviationPoint& point);
 bool on_decade_grid(std::int64_t m);
 
 /// compute_allan_curve with the noise at averaging factor m identified by identify(m) (called
-/// at kept_noise_factor instead where few averages remain) and the EDF from `edf_model`.
+/// at kept_noise_factor instead where few averages remain) and the EDF from `edf_model`; the
+/// deviations computed on up to `threads` threads (compute_deviation).
 AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
                                 const TauSpec& taus, double confidence_level, EdfModel edf_model,
-                                const std::function<NoiseIdentification(std::int64_t)>& identify);
+                                const std::function<NoiseIdentification(std::int64_t)>& identify,
+                                unsigned threads = 1);
 
 }  // namespace sigmatau::detail

@@ -5,11 +5,24 @@
 // Speed: the inner loops are written with kLanes explicit, independent accumulators over separate
 // hi / lo streams, which GCC and Clang vectorise for any x86-64 level without changing the order
 // of the floating-point operations (results are identical for SSE2, AVX2 and AVX-512 builds).
+// The modified sums of several factors run in lock step, one factor per vector lane
+// (modified_sums): each factor's running sum is a chain of dependent additions, so one factor
+// alone leaves the floating-point units waiting on latency. Floating-point contraction is off in
+// this file, so the AVX-512 clones cannot fuse a multiplication and an addition (every clone
+// gives the same bits).
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
 #include "allan_sums.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <future>
+#include <span>
 #include <vector>
 
 #include "allan_dd.hpp"
@@ -72,33 +85,46 @@ double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::in
   return total.value();
 }
 
-double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t count) {
-  const double* h = series.hi().data();
-  const double* l = series.lo().data();
-  // V(0) = sum of D2(0..m-1), accurately.
+namespace {
+
+/// The running state of one factor's modified sum: V(j) = s + c, and the total of the blocks
+/// done so far.
+struct ModifiedState {
+  double s = 0.0;
+  double c = 0.0;
+  DoubleDouble total;
+};
+
+/// V(0) = sum of D2(0..m-1), accurately; `buffer` holds kBlock doubles.
+ModifiedState modified_start(const double* h, const double* l, std::int64_t m, double* buffer) {
   DoubleDouble v0;
-  std::vector<double> lead(static_cast<std::size_t>(kBlock));
-  std::vector<double> trail(static_cast<std::size_t>(kBlock));
   for (std::int64_t i0 = 0; i0 < m; i0 += kBlock) {
     const std::int64_t len = std::min(kBlock, m - i0);
-    fill_d2(h, l, m, i0, len, lead.data());
+    fill_d2(h, l, m, i0, len, buffer);
     double acc[kLanes] = {};
-    for (std::int64_t t = 0; t < len; ++t) acc[t % kLanes] += lead[t];
+    for (std::int64_t t = 0; t < len; ++t) acc[t % kLanes] += buffer[t];
     v0.add(lane_total(acc));
   }
+  return {v0.hi, v0.lo, {}};
+}
+
+/// The blocks of one factor's modified sum from start point j_begin (a multiple of kBlock) to
+/// the end, one factor at a time; returns the sum. `lead`, `trail` hold kBlock doubles.
+double modified_finish(const double* h, const double* l, std::int64_t m, std::int64_t count,
+                       ModifiedState state, std::int64_t j_begin, double* lead, double* trail) {
   // V(j+1) = V(j) + D2(j+m) - D2(j): each of the two additions is error-free transformed (the
   // running value is s + c), so V carries no drift however long the series; (s, c) is
   // renormalised after every block.
-  double s = v0.hi;
-  double c = v0.lo;
-  DoubleDouble total;
+  double s = state.s;
+  double c = state.c;
+  DoubleDouble total = state.total;
   const std::int64_t transitions = count - 1;  // D2(j+m) exists for j <= count - 2
-  for (std::int64_t j0 = 0; j0 < count; j0 += kBlock) {
+  for (std::int64_t j0 = j_begin; j0 < count; j0 += kBlock) {
     const std::int64_t len = std::min(kBlock, count - j0);
     const std::int64_t steps = std::min(len, transitions - j0);
     if (steps > 0) {
-      fill_d2(h, l, m, j0 + m, steps, lead.data());
-      fill_d2(h, l, m, j0, steps, trail.data());
+      fill_d2(h, l, m, j0 + m, steps, lead);
+      fill_d2(h, l, m, j0, steps, trail);
     }
     double acc[kLanes] = {};
     for (std::int64_t t = 0; t < len; ++t) {
@@ -117,6 +143,174 @@ double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t coun
     total.add(lane_total(acc));
   }
   return total.value();
+}
+
+/// Factors run in lock step by modified_sums: one per lane of a vector of kLanes doubles
+/// (GCC/Clang vector extension; element-wise operations, so each lane computes exactly what
+/// modified_finish computes for its factor).
+constexpr int kFactorLanes = kLanes;
+using Lanes = double __attribute__((vector_size(kFactorLanes * sizeof(double))));
+
+/// Steps per lock-step chunk: the interleaved D2 buffers of a chunk (2 x kChunk x kFactorLanes
+/// doubles, 16 KiB) stay in the first-level cache between their filling and their use.
+constexpr std::int64_t kChunk = 128;
+static_assert(kBlock % kChunk == 0 && kChunk % kLanes == 0, "blocks are made of chunks");
+
+/// out[t * kFactorLanes] = D2(n0 + t) for t < kChunk: fill_d2 into one lane of an interleaved
+/// buffer.
+SIGMATAU_SIMD_CLONES void fill_d2_lane(const double* h, const double* l, std::int64_t m,
+                                        std::int64_t n0, double* out) {
+  double tmp[kChunk];
+  fill_d2(h, l, m, n0, kChunk, tmp);
+  for (std::int64_t i = 0; i < kChunk; ++i) out[i * kFactorLanes] = tmp[i];
+}
+
+/// The running values and lanes of kFactorLanes factors in lock step.
+struct LockStep {
+  Lanes s, c;
+  Lanes acc[kLanes];
+};
+
+/// One chunk (kChunk steps) of modified_finish for kFactorLanes factors at once: lead and trail
+/// hold D2(j + m + t) and D2(j + t) of factor g at [t * kFactorLanes + g]. Steps within a block
+/// go to the block's lanes acc[t mod kLanes], as in modified_finish.
+SIGMATAU_SIMD_CLONES void modified_chunk_lanes(const double* lead, const double* trail,
+                                                LockStep& state) {
+  Lanes s = state.s;
+  Lanes c = state.c;
+  Lanes acc[kLanes];
+  for (int k = 0; k < kLanes; ++k) acc[k] = state.acc[k];
+  for (std::int64_t t = 0; t < kChunk; t += kLanes) {
+    for (int k = 0; k < kLanes; ++k) {
+      Lanes up, down;
+      __builtin_memcpy(&up, lead + (t + k) * kFactorLanes, sizeof up);
+      __builtin_memcpy(&down, trail + (t + k) * kFactorLanes, sizeof down);
+      down = -down;
+      const Lanes v = s + c;
+      acc[k] += v * v;
+      // two_sum(s, up), then two_sum(that, -down), as in modified_finish.
+      const Lanes as = s + up;
+      const Lanes ab = as - s;
+      const Lanes ae = (s - (as - ab)) + (up - ab);
+      const Lanes bs = as + down;
+      const Lanes bb = bs - as;
+      const Lanes be = (as - (bs - bb)) + (down - bb);
+      s = bs;
+      c += ae + be;
+    }
+  }
+  state.s = s;
+  state.c = c;
+  for (int k = 0; k < kLanes; ++k) state.acc[k] = acc[k];
+}
+
+/// The end of a block in lock step: (s, c) renormalised as in modified_finish, block_total[g]
+/// the block's lane total of factor g, and the lanes cleared for the next block.
+void modified_block_end(LockStep& state, double* block_total) {
+  const Lanes rs = state.s + state.c;
+  const Lanes rb = rs - state.s;
+  state.c = (state.s - (rs - rb)) + (state.c - rb);
+  state.s = rs;
+  const Lanes* a = state.acc;
+  const Lanes total = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  __builtin_memcpy(block_total, &total, sizeof total);
+  for (int k = 0; k < kLanes; ++k) state.acc[k] = Lanes{};
+}
+
+}  // namespace
+
+namespace {
+
+/// modified_sums for the factors m (at most kFactorLanes, ascending), into sums.
+void modified_group(const double* h, const double* l, std::span<const std::int64_t> m,
+                    std::span<const std::int64_t> counts, std::span<double> sums) {
+  // modified_start needs kBlock doubles of lead.
+  std::vector<double> lead(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
+  std::vector<double> trail(static_cast<std::size_t>(kChunk * kFactorLanes));
+  {
+    const std::size_t G = m.size();
+    SIGMATAU_ASSERT(G <= kFactorLanes, "a group has at most kFactorLanes factors");
+    ModifiedState state[kFactorLanes];
+    std::int64_t full[kFactorLanes] = {};  // blocks with kBlock steps, done in lock step
+    std::int64_t most = 0;
+    LockStep lanes{};
+    double block_total[kFactorLanes];
+    for (std::size_t g = 0; g < G; ++g) {
+      state[g] = modified_start(h, l, m[g], lead.data());
+      lanes.s[g] = state[g].s;
+      lanes.c[g] = state[g].c;
+      // Block b has kBlock steps when (b + 1) kBlock <= count - 1 (modified_finish's steps).
+      full[g] = G > 1 ? (counts[g] - 1) / kBlock : 0;
+      most = std::max(most, full[g]);
+    }
+    // A finished factor's lane idles on zeros (and is not read again).
+    std::fill(lead.begin(), lead.end(), 0.0);
+    std::fill(trail.begin(), trail.end(), 0.0);
+    for (std::int64_t b = 0; b < most; ++b) {
+      for (std::int64_t j = b * kBlock; j < (b + 1) * kBlock; j += kChunk) {
+        for (std::size_t g = 0; g < G; ++g) {
+          if (b >= full[g]) continue;
+          const std::int64_t mg = m[g];
+          fill_d2_lane(h, l, mg, j + mg, lead.data() + g);
+          fill_d2_lane(h, l, mg, j, trail.data() + g);
+        }
+        modified_chunk_lanes(lead.data(), trail.data(), lanes);
+      }
+      modified_block_end(lanes, block_total);
+      for (std::size_t g = 0; g < G; ++g) {
+        if (b >= full[g]) continue;
+        state[g].s = lanes.s[g];
+        state[g].c = lanes.c[g];
+        state[g].total.add(block_total[g]);
+        if (b + 1 == full[g]) {
+          for (std::int64_t t = 0; t < kChunk; ++t) {
+            lead[static_cast<std::size_t>(t * kFactorLanes) + g] = 0.0;
+            trail[static_cast<std::size_t>(t * kFactorLanes) + g] = 0.0;
+          }
+        }
+      }
+    }
+    for (std::size_t g = 0; g < G; ++g) {
+      sums[g] = modified_finish(h, l, m[g], counts[g], state[g], full[g] * kBlock,
+                                     lead.data(), trail.data());
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
+                                  std::span<const std::int64_t> counts, unsigned threads) {
+  SIGMATAU_ASSERT(m.size() == counts.size(), "one count per factor");
+  const double* h = series.hi().data();
+  const double* l = series.lo().data();
+  std::vector<double> sums(m.size(), 0.0);
+  // Groups of near-equal size, at most kFactorLanes factors, consecutive in the order given
+  // (ascending factors have similar term counts, so few lanes idle); with threads, a multiple
+  // of their number, so each thread gets about the same number of factors.
+  const std::size_t workers = std::max(1u, threads);
+  std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
+  if (workers > 1) groups = std::min(m.size(), (groups + workers - 1) / workers * workers);
+  auto run = [&](std::size_t k) {
+    const std::size_t a = m.size() * k / groups;
+    const std::size_t b = m.size() * (k + 1) / groups;
+    modified_group(h, l, m.subspan(a, b - a), counts.subspan(a, b - a),
+                   std::span(sums).subspan(a, b - a));
+  };
+  if (workers == 1 || groups < 2) {
+    for (std::size_t k = 0; k < groups; ++k) run(k);
+    return sums;
+  }
+  // Group k on thread k mod workers; the first share on this thread.
+  std::vector<std::future<void>> others;
+  for (std::size_t w = 1; w < std::min(workers, groups); ++w) {
+    others.push_back(std::async(std::launch::async, [&run, w, workers, groups] {
+      for (std::size_t k = w; k < groups; k += workers) run(k);
+    }));
+  }
+  for (std::size_t k = 0; k < groups; k += workers) run(k);
+  for (auto& f : others) f.get();
+  return sums;
 }
 
 double total_boundary_sum(const PhaseSeries& series, std::int64_t m) {

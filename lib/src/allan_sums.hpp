@@ -62,8 +62,13 @@ double sum_squares(const double* h, const double* l, int order, std::int64_t m, 
 /// sum_{k < count} D(k m)^2 with D = D2 (order 2, ADEV) or D3 (order 3, HDEV): stride m.
 double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::int64_t count);
 
-/// sum_{j < count} V(j)^2 (MDEV, TDEV), V carried by a compensated running sum.
-double modified_sum(const PhaseSeries& series, std::int64_t m, std::int64_t count);
+/// For each m (counts[t] >= 1 terms), sum_{j < counts[t]} V(j)^2 (MDEV, TDEV), V carried by a
+/// compensated running sum. Up to eight factors run at once, one per vector lane (each factor's
+/// running sum is a serial chain of additions, so several chains keep the floating-point units
+/// busy); every factor's result is the same bit for bit as when it is computed alone. With
+/// threads > 1 the groups of factors are shared among that many threads (same results).
+std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
+                                  std::span<const std::int64_t> counts, unsigned threads = 1);
 
 /// The 2(m-1) terms of the total variance whose 2m-point window reaches past either end of the
 /// phase (i = 1..m-1 and i = L-m+1..L-1): sum of (x*[i-m] - 2x*[i] + x*[i+m])^2. The other
