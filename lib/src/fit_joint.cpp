@@ -154,10 +154,15 @@ Gls gls(const Design& d, Mask mask, const Eigen::MatrixXd& sigma) {
     llt.compute(ridged);
   }
   if (llt.info() != Eigen::Success) throw Error("fit: AVAR covariance is not positive definite");
+  const Eigen::VectorXd vw = llt.matrixL().solve(d.v);
+  if (out.columns.empty()) {  // no term: the curve itself is the residual (a profile's others)
+    out.whitened.resize(d.a.rows(), 0);
+    out.chi2 = vw.squaredNorm();
+    return out;
+  }
   Eigen::MatrixXd a(d.a.rows(), static_cast<Eigen::Index>(out.columns.size()));
   for (std::size_t c = 0; c < out.columns.size(); ++c) a.col(static_cast<Eigen::Index>(c)) = d.a.col(out.columns[c]);
   out.whitened = llt.matrixL().solve(a);
-  const Eigen::VectorXd vw = llt.matrixL().solve(d.v);
   // Columns scaled to unit norm: the terms' AVARs differ by many orders of magnitude.
   Eigen::VectorXd scale(out.whitened.cols());
   Eigen::MatrixXd as = out.whitened;
