@@ -406,14 +406,12 @@ ChannelFit fit_joint(const std::vector<AvarPoint>& points, const CurveSource& so
   for (int k = 0; k < kTermCount; ++k) {
     ParameterEstimate p;
     p.term = kFitTerms[static_cast<std::size_t>(k)];
-    const bool column =
-        std::find(final_fit.fit.columns.begin(), final_fit.fit.columns.end(), k) != final_fit.fit.columns.end();
-    // A term the model chose is in it; one the added-term search offered (all IEEE candidates
-    // beside a new term) and the fit put at 0 is not, and gets its bound like any term left out
-    // (it was listed with N = 0 [0, bound]: filtered white noise, where a GM carries the white
-    // level, read as "N, B + GM" in 6 of the 10 channels bench/fit_added_terms_sim.py's seeds
-    // 1-10 got wrong). A forced model (--terms) keeps every term it names.
-    if (column && (final_fit.fit.theta(k) > 0 || !options.terms.empty() || (gm_tau_c.empty() && !sinusoid_hz))) {
+    // In the model: the terms of `model`, the chosen mask (with added terms, the terms the final
+    // fit keeps above 0: an IEEE candidate offered beside a new term and put at 0 gets its bound
+    // like any term left out; it was listed as N = 0 [0, bound], 6 of the 10 wrong models on
+    // bench/fit_added_terms_sim.py's filtered-white seeds 1-10). A forced model (--terms) and an
+    // IEEE-only fit list every term of their mask, as before.
+    if (model & (1u << k)) {
       const Kept e = kept(k);
       p.in_model = true;
       out.model_terms.push_back(p.term);
