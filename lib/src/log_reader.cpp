@@ -10,6 +10,7 @@
 #include "binary_log.hpp"
 #include "byte_source.hpp"
 #include "log_internal.hpp"
+#include "page_populate.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/sampling_limits.hpp"
 #include "sigmatau/text_encoding.hpp"
@@ -229,8 +230,13 @@ Log read_log(const LogOptions& options,
   };
   bool sized = false;
   if (const std::int64_t hint = reader.rows_left_hint(); hint > 0) {
+    // Known before the first block (a raw binary file): the exact length, so every page
+    // reserved will be written; they are faulted in on the other core meanwhile.
     reserve_rows(hint);
     sized = true;
+    for (auto& channel : log.channels) {
+      detail::populate_in_background(channel.data(), channel.capacity() * sizeof(double));
+    }
   }
   SampleBlock block;
   while (reader.read_block(block)) {

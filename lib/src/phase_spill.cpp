@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "page_populate.hpp"
 #include "sigmatau/error.hpp"
 
 #include <fcntl.h>
@@ -205,6 +206,7 @@ DoubleBuffer::DoubleBuffer(std::size_t n, const PhaseStorage& storage) : size_(n
   if (p == MAP_FAILED) throw std::bad_alloc();
   data_ = static_cast<double*>(p);
   mapped_bytes_ = bytes;
+  populate_in_background(p, bytes);
 #else
   if (storage.spill) throw Error("spilling the phase to a file needs Linux");
   data_ = static_cast<double*>(std::calloc(n, sizeof(double)));
