@@ -37,6 +37,7 @@ constexpr std::int64_t kMeanBlock = 4096;
 constexpr int kLanes = 8;
 /// Samples between renormalisations of the running double-double phase (see Prefix).
 constexpr std::int64_t kPrefixBlock = 4096;
+
 static_assert(kMeanBlock % kLanes == 0, "lane of sample i is i mod kLanes");
 
 void check_tau0(double tau0_s) { checked_interval_s(tau0_s, "sample interval tau0_s"); }
@@ -153,6 +154,10 @@ struct Prefix {
   std::int64_t count = 0;  // samples integrated so far; the next goes to point count + 1
 
   void add(std::span<const double> y, double* hi, double* lo) {
+    // h and l in locals: as members, every store to hi and lo (which might alias them, for all
+    // the compiler knows) would send them through memory on the serial chain.
+    double run_h = h;
+    double run_l = l;
     const double* p = y.data();
     const std::int64_t n = static_cast<std::int64_t>(y.size());
     std::int64_t i = 0;
@@ -163,21 +168,23 @@ struct Prefix {
       const double* ys = p + i;
       for (std::int64_t j = 0; j < len; ++j) {
         const detail::SumAndError d = detail::two_sum(ys[j], -ybar);  // y_i - ybar, exactly
-        const detail::SumAndError t = detail::two_sum(h, d.sum);
-        h = t.sum;
-        l += t.err + d.err;
-        const detail::SumAndError s = detail::two_sum(h, l);
+        const detail::SumAndError t = detail::two_sum(run_h, d.sum);
+        run_h = t.sum;
+        run_l += t.err + d.err;
+        const detail::SumAndError s = detail::two_sum(run_h, run_l);
         hs[j] = s.sum;
         ls[j] = s.err;
       }
       i += len;
       count += len;
       if (count % kPrefixBlock == 0) {
-        const detail::SumAndError s = detail::two_sum(h, l);
-        h = s.sum;
-        l = s.err;
+        const detail::SumAndError s = detail::two_sum(run_h, run_l);
+        run_h = s.sum;
+        run_l = s.err;
       }
     }
+    h = run_h;
+    l = run_l;
   }
 };
 
