@@ -89,16 +89,16 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
   std::vector<double> sums(factors.size(), 0.0);
   switch (statistic) {
     case Statistic::oadev:
-      sums = detail::overlapping_sums(series, 2, factors, counts);
+      sums = detail::overlapping_sums(series, 2, factors, counts, threads);
       break;
     case Statistic::ohdev:
-      sums = detail::overlapping_sums(series, 3, factors, counts);
+      sums = detail::overlapping_sums(series, 3, factors, counts, threads);
       break;
     case Statistic::totdev: {
       // The interior N-2m terms are the OADEV terms; the 2(m-1) others reach past an end.
       std::vector<std::int64_t> interior;
       for (const std::int64_t factor : factors) interior.push_back(term_count(Statistic::oadev, factor, N));
-      sums = detail::overlapping_sums(series, 2, factors, interior);
+      sums = detail::overlapping_sums(series, 2, factors, interior, threads);
       for (std::size_t t = 0; t < factors.size(); ++t) {
         sums[t] += detail::total_boundary_sum(series, factors[t]);
       }

@@ -48,9 +48,10 @@ std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series);
 /// All factors are swept together, block by block, so the phase is read from memory about once
 /// per group of factors instead of once per factor.
 /// Factors below 4096 read the double-double phase itself (see kCompactMin in allan_sweep.cpp).
+/// With threads > 1 the factors below kCompactMin are swept on a second thread (same sums).
 std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
                                      std::span<const std::int64_t> m,
-                                     std::span<const std::int64_t> counts);
+                                     std::span<const std::int64_t> counts, unsigned threads = 1);
 
 /// sum_{i < len} D(n0 + i)^2 on raw double-double arrays h, l (D = D2 for order 2, D3 for
 /// order 3, lag m), summed in kLanes lanes: the kernel of the overlapping sums, for other

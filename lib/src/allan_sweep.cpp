@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <mutex>
 
@@ -392,7 +393,7 @@ double sum_squares(const double* h, const double* l, int order, std::int64_t m, 
 
 std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
                                      std::span<const std::int64_t> m,
-                                     std::span<const std::int64_t> counts) {
+                                     std::span<const std::int64_t> counts, unsigned threads) {
   SIGMATAU_ASSERT(order == 2 || order == 3, "difference order must be 2 or 3");
   SIGMATAU_ASSERT(m.size() == counts.size(), "one count per factor");
   std::vector<double> sums(m.size(), 0.0);
@@ -403,8 +404,26 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
     (m[t] < kCompactMin ? small_counts : large_counts).push_back(counts[t]);
   }
   std::vector<DoubleDouble> small_acc(small_m.size()), large_acc(large_m.size());
-  small_factor_sweep(series.hi().data(), series.lo().data(), series.spilled(), order, small_m,
-                     small_counts, small_acc);
+  const auto small_sweep = [&] {
+    small_factor_sweep(series.hi().data(), series.lo().data(), series.spilled(), order, small_m,
+                       small_counts, small_acc);
+  };
+  // The two sets share nothing but the (read-only) phase: with a second thread the small
+  // factors are swept beside the large ones (each accumulator is the same either way). Not
+  // for spilled storage, where two sweeps would compete for the resident budget.
+  std::future<void> beside;
+  if (threads > 1 && !small_m.empty() && !large_m.empty() && !series.spilled()) {
+    beside = std::async(std::launch::async, small_sweep);
+  } else {
+    small_sweep();
+  }
+  // Joined on every way out (the large sweep may throw: std::bad_alloc).
+  struct Join {
+    std::future<void>& f;
+    ~Join() {
+      if (f.valid()) f.wait();
+    }
+  } join{beside};
   if (!large_m.empty()) {
     const std::shared_ptr<const CompactPhase> phase = compact_phase(series);
     // Octave runs (multiples of kBaseBlock) by chains; every other factor by blocks.
@@ -430,6 +449,7 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
     }
     for (std::size_t k = 0; k < other_m.size(); ++k) large_acc[other_index[k]] = other_acc[k];
   }
+  if (beside.valid()) beside.get();
   std::size_t next_small = 0, next_large = 0;
   for (std::size_t t = 0; t < m.size(); ++t) {
     sums[t] = (m[t] < kCompactMin ? small_acc[next_small++] : large_acc[next_large++]).value();

@@ -42,7 +42,8 @@ std::int64_t term_count(Statistic statistic, std::int64_t m, std::int64_t n_phas
 /// squares are blocked, so the result is within ~1e-15 relative of the exact statistic of the
 /// input (tests/test_allan_precision.cpp), whatever the offset or length of the data.
 /// `threads` (>= 1) is how many threads the sums may use (MDEV and TDEV share their factors
-/// among them); the results are the same bit for bit whatever it is.
+/// among them; OADEV, OHDEV and TOTDEV sweep their factors below 4096 on a second thread); the
+/// results are the same bit for bit whatever it is.
 std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statistic statistic,
                                               std::span<const std::int64_t> m,
                                               unsigned threads = 1);
