@@ -223,6 +223,75 @@ TEST_CASE("a block's robust sigma is sigma on Gaussian noise and 1 LSB on mostly
   CHECK_THROWS_AS(outlier_scale(x, 1.0), Error);
 }
 
+namespace {
+/// m and s as the method defines them, by std::nth_element (the selection outlier_scale uses
+/// is a faster one; a quantile is one value, so the two must agree exactly).
+OutlierScale scale_by_nth_element(std::span<const double> window, double q) {
+  const std::size_t stride = std::max<std::size_t>(1, window.size() / 1024);
+  std::vector<double> s;
+  for (std::size_t i = 0; i < window.size(); i += stride) {
+    if (std::isfinite(window[i])) s.push_back(window[i]);
+  }
+  if (s.empty()) return {};
+  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
+  const double m = s[s.size() / 2];
+  double d_min = INFINITY;
+  for (double& v : s) {
+    v = std::abs(v - m);
+    if (v > 0 && v < d_min) d_min = v;
+  }
+  if (d_min == INFINITY) return {m, 0.0};
+  double z = 0, hi = 40;  // |z| with P(|Z| <= z) = q, by bisection as the library does
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (z + hi);
+    if (mid == z || mid == hi) break;
+    (std::erfc(mid / std::sqrt(2.0)) > 1 - q ? z : hi) = mid;
+  }
+  z = 0.5 * (z + hi);
+  const auto k = std::min(s.size() - 1, static_cast<std::size_t>(q * static_cast<double>(s.size())));
+  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(k), s.end());
+  return {m, std::max(s[k] / z, d_min)};
+}
+}  // namespace
+
+TEST_CASE("the block's median and robust sigma are the exact order statistics on any values") {
+  // Windows that stress a selection: sorted either way, organ pipe, heavy ties (codes), two
+  // values, constant, one spike, NaN holes, every length from 1 to past two strides.
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<std::vector<double>> windows;
+  for (const std::size_t n : {1u, 2u, 3u, 47u, 48u, 49u, 100u, 1023u, 1024u, 2047u, 4096u, 9000u}) {
+    std::vector<double> w(n);
+    for (auto& v : w) v = g(rng);
+    windows.push_back(w);
+    std::sort(w.begin(), w.end());
+    windows.push_back(w);
+    std::reverse(w.begin(), w.end());
+    windows.push_back(w);
+    for (std::size_t i = 0; i < n; ++i) w[i] = static_cast<double>(std::min(i, n - 1 - i));
+    windows.push_back(w);
+    for (auto& v : w) v = std::round(g(rng) * 0.3);
+    windows.push_back(w);
+    for (std::size_t i = 0; i < n; ++i) w[i] = i % 3 == 0 ? 1.0 : -2.0;
+    windows.push_back(w);
+    std::fill(w.begin(), w.end(), 7.25);
+    w[n / 2] = 1e6;
+    windows.push_back(w);
+    for (std::size_t i = 0; i < n; i += 5) w[i] = NAN;
+    windows.push_back(w);
+  }
+  for (std::size_t c = 0; c < windows.size(); ++c) {
+    for (const double q : {0.5, 0.9, 0.99}) {
+      CAPTURE(c);
+      CAPTURE(q);
+      const OutlierScale got = outlier_scale(windows[c], q);
+      const OutlierScale want = scale_by_nth_element(windows[c], q);
+      CHECK(got.median == want.median);
+      CHECK(got.sigma == want.sigma);
+    }
+  }
+}
+
 TEST_CASE("bad outlier options are refused") {
   OutlierOptions options;
   options.block_rows = 63;

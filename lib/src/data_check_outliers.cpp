@@ -39,6 +39,55 @@ void check_quantile(double q) {
   }
 }
 
+/// Ranges shorter than this go to std::nth_element (quickselect's levels cost more there).
+constexpr std::size_t kSelectDirect = 48;
+/// Levels of quickselect before std::nth_element takes over (a bound on the worst case).
+constexpr int kSelectLevels = 48;
+
+/// The k-th smallest of the finite values v (0-based: the value std::nth_element would put at
+/// position k), v left as it is. Quickselect whose partition has no data-dependent branch: each
+/// value is written to both ends of a scratch array and the ends advance by the comparisons, so
+/// a level costs about one cycle a value instead of a mispredicted branch every other value.
+/// The k-th order statistic is one value, so the result is nth_element's whatever the path.
+double kth_smallest(std::span<const double> v, std::size_t k) {
+  thread_local std::vector<double> scratch[2];
+  const std::size_t size = v.size();
+  for (auto& s : scratch) {
+    if (s.size() < size) s.resize(size);
+  }
+  const double* in = v.data();  // the values left, in v or in scratch[1 - next]
+  int next = 0;                 // the scratch array this level writes
+  std::size_t n = size;
+  for (int level = 0; n > kSelectDirect && level < kSelectLevels; ++level, next = 1 - next) {
+    double* const out = scratch[next].data();
+    const double a = in[0], b = in[n / 2], c = in[n - 1];
+    const double pivot = std::max(std::min(a, b), std::min(std::max(a, b), c));  // median of 3
+    std::size_t below = 0;  // out[0, below): values < pivot
+    std::size_t above = 0;  // out[n - above, n): values > pivot
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = in[i];
+      out[below] = x;
+      below += x < pivot ? 1 : 0;
+      out[n - 1 - above] = x;
+      above += x > pivot ? 1 : 0;
+    }
+    if (k < below) {
+      in = out;
+      n = below;
+    } else if (k >= n - above) {
+      k -= n - above;
+      in = out + (n - above);
+      n = above;
+    } else {
+      return pivot;  // k falls among the values equal to the pivot
+    }
+  }
+  double* const out = scratch[next].data();
+  std::copy(in, in + n, out);
+  std::nth_element(out, out + k, out + n);
+  return out[k];
+}
+
 /// m and s of `window` (see OutlierScale); `sample` is scratch.
 OutlierScale scale_of(std::span<const double> window, double q, double z,
                       std::vector<double>& sample) {
@@ -48,9 +97,7 @@ OutlierScale scale_of(std::span<const double> window, double q, double z,
     if (std::isfinite(window[i])) sample.push_back(window[i]);
   }
   if (sample.empty()) return {};
-  const auto middle = sample.begin() + static_cast<std::ptrdiff_t>(sample.size() / 2);
-  std::nth_element(sample.begin(), middle, sample.end());
-  const double m = *middle;
+  const double m = kth_smallest(sample, sample.size() / 2);
   double d_min = INFINITY;
   for (double& v : sample) {
     v = std::abs(v - m);
@@ -59,8 +106,7 @@ OutlierScale scale_of(std::span<const double> window, double q, double z,
   if (d_min == INFINITY) return {m, 0.0};  // one value only: nothing can be told apart
   const auto k =
       std::min(sample.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sample.size())));
-  std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(k), sample.end());
-  return {m, std::max(sample[k] / z, d_min)};
+  return {m, std::max(kth_smallest(sample, k) / z, d_min)};
 }
 
 std::string format_value(double v, const std::string& unit) {
