@@ -15,6 +15,13 @@
 // Every y_i - ybar is split exactly into two doubles (TwoSum) and added to the running
 // double-double sum, so the stored phase carries no rounding error of practical size, whatever the
 // offset of the data, the length of the log or the size of the phase (random walks).
+// The clones of mean_block (simd_clones.hpp) give the same bits only without contraction.
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
 #include "sigmatau/phase_series.hpp"
 
 #include <algorithm>
@@ -26,6 +33,7 @@
 #include "phase_store.hpp"
 #include "sigmatau/error.hpp"
 #include "sigmatau/sampling_limits.hpp"
+#include "simd_clones.hpp"
 
 namespace sigmatau {
 namespace {
@@ -75,6 +83,38 @@ void divide(std::span<const double> v, double s, std::vector<double>& out) {
   throw Error(std::string(what) + " samples are too large to process (their sum overflows)");
 }
 
+/// One whole block of kMeanBlock samples into the lanes (lane = index mod kLanes): s and e the
+/// exact split of y_i - y0 summed, c the finite check (stays 0 unless a value is Inf or NaN),
+/// big the largest |y_i|. The lanes are locals, so they stay in registers and the loop
+/// vectorises; each lane's additions are those of a scalar loop, in its order.
+SIGMATAU_SIMD_CLONES
+void mean_block(const double* p, double y0, double* s, double* e, double* c, double* big) {
+  double ls[kLanes], le[kLanes], lc[kLanes], lb[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    ls[k] = s[k];
+    le[k] = e[k];
+    lc[k] = c[k];
+    lb[k] = big[k];
+  }
+  for (std::int64_t j = 0; j < kMeanBlock; j += kLanes) {
+    for (int k = 0; k < kLanes; ++k) {
+      const double y = p[j + k];
+      const detail::SumAndError d = detail::two_sum(y, -y0);
+      ls[k] += d.sum;
+      le[k] += d.err;
+      lc[k] += d.sum * 0.0;
+      const double a = std::fabs(y);
+      lb[k] = a > lb[k] ? a : lb[k];
+    }
+  }
+  for (int k = 0; k < kLanes; ++k) {
+    s[k] = ls[k];
+    e[k] = le[k];
+    c[k] = lc[k];
+    big[k] = lb[k];
+  }
+}
+
 /// Mean of y computed as y_0 + mean(y_i - y_0), with the differences split exactly and summed in
 /// blocks of kMeanBlock samples (kLanes plain-double lanes, lane = index mod kLanes; block totals
 /// in double-double): exact for constant data (the mean is then y_0 itself), accurate otherwise.
@@ -94,27 +134,22 @@ struct MeanAccumulator {
     }
   }
 
-  /// Adds y (samples count.. of the log). Throws Error naming the first non-finite sample.
-  void add(std::span<const double> y, const char* what) {
+  /// Adds y (samples count.. of the log) and raises `largest` to the largest |y_i|. Throws
+  /// Error naming the first non-finite sample.
+  void add(std::span<const double> y, const char* what, double& largest) {
     if (y.empty()) return;
     if (count == 0) y0 = y[0];
     const double* p = y.data();
     const std::int64_t n = static_cast<std::int64_t>(y.size());
     double finite_check = 0.0;  // stays 0 unless a sample (or a difference) is Inf or NaN
     double c[kLanes] = {};
+    double big[kLanes] = {};
     std::int64_t i = 0;
     while (i < n) {
       const std::int64_t offset = count % kMeanBlock;
       const std::int64_t len = std::min(n - i, kMeanBlock - offset);
       if (offset == 0 && len == kMeanBlock) {
-        for (std::int64_t j = 0; j < kMeanBlock; j += kLanes) {
-          for (int k = 0; k < kLanes; ++k) {
-            const detail::SumAndError d = detail::two_sum(p[i + j + k], -y0);
-            s[k] += d.sum;
-            e[k] += d.err;
-            c[k] += d.sum * 0.0;
-          }
-        }
+        mean_block(p + i, y0, s, e, c, big);
       } else {
         for (std::int64_t j = 0; j < len; ++j) {
           const int k = static_cast<int>((offset + j) % kLanes);
@@ -122,6 +157,7 @@ struct MeanAccumulator {
           s[k] += d.sum;
           e[k] += d.err;
           c[k] += d.sum * 0.0;
+          largest = std::max(largest, std::fabs(p[i + j]));
         }
       }
       i += len;
@@ -130,6 +166,7 @@ struct MeanAccumulator {
     }
     for (int k = 0; k < kLanes; ++k) finite_check += c[k];
     if (!(finite_check == 0.0)) throw_non_finite(y, count - n, what);
+    for (const double a : big) largest = std::max(largest, a);
   }
 
   /// The mean of everything added; Error if the sum overflowed.
@@ -231,10 +268,10 @@ void PhaseSeriesBuilder::scan(std::span<const double> values) {
     for (const double v : values) finite_check += v * 0.0;
     if (!(finite_check == 0.0)) throw_non_finite(values, st.mean.count, "phase");
     st.mean.count += static_cast<std::int64_t>(values.size());
+    st.largest = largest_magnitude(values, st.largest);
   } else {
-    st.mean.add(values, "rate");
+    st.mean.add(values, "rate", st.largest);  // and the largest |value|, in the same pass
   }
-  st.largest = largest_magnitude(values, st.largest);
   st.last = values.back();
 }
 
