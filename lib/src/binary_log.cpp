@@ -184,10 +184,11 @@ std::int64_t BinaryLog::records_left() const {
 
 std::int64_t BinaryLog::read_rows(SampleBlock& block, std::int64_t max_rows) {
   std::int64_t rows = 0;
+  const std::int64_t held = block.rows();  // rows the block held before this call
   try {
     read_records(block, max_rows, rows);
   } catch (...) {
-    timing_.add_untimed(block.rows());  // the whole rows decoded before the error are counted
+    timing_.add_untimed(block.rows() - held);  // the whole rows decoded before the error count
     throw;
   }
   timing_.add_untimed(rows);

@@ -133,6 +133,18 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
   }
   block.t_s.clear();
   if (m.selection->has_time) block.t_s.reserve(reserve);
+  return append_block(block, max_rows);
+}
+
+bool LogReader::append_block(SampleBlock& block, std::int64_t max_rows) {
+  Impl& m = *impl_;
+  if (!(max_rows >= 1)) throw Error("read_block: max_rows must be >= 1");
+  const std::size_t channels = m.selection->channel_columns.size();
+  if (block.values.empty()) block.values.resize(channels);
+  if (block.values.size() != channels) {
+    throw Error("append_block: the block holds " + std::to_string(block.values.size()) +
+                " channels, the input " + std::to_string(channels));
+  }
   if (m.finished) return false;
   const std::int64_t rows = m.bag    ? m.bag->read_rows(block, max_rows)
                             : m.text ? m.text->read_rows(block, max_rows)
@@ -222,11 +234,14 @@ Log read_log(const LogOptions& options,
   // reallocation instead, every step copies all that was read and holds both copies at once.
   // One row more than the input holds: a rate channel's phase has one point more than its
   // samples, so the samples' memory can then hold an array of the phase (PhaseSeries::recycle).
+  // The blocks are read straight into the final arrays (LogReader::append_block).
+  SampleBlock all;
+  all.values.resize(log.channel_names.size());
   const auto reserve_rows = [&](std::int64_t rows) {
     const auto size = static_cast<std::size_t>(rows) + 1 +
-                      (log.channels.empty() ? 0 : log.channels[0].size());
-    for (auto& channel : log.channels) channel.reserve(size);
-    if (reader.has_time()) log.t_s.reserve(size);
+                      (all.values.empty() ? 0 : all.values[0].size());
+    for (auto& channel : all.values) channel.reserve(size);
+    if (reader.has_time()) all.t_s.reserve(size);
   };
   bool sized = false;
   if (const std::int64_t hint = reader.rows_left_hint(); hint > 0) {
@@ -234,22 +249,19 @@ Log read_log(const LogOptions& options,
     // reserved will be written; they are faulted in on the other core meanwhile.
     reserve_rows(hint);
     sized = true;
-    for (auto& channel : log.channels) {
+    for (auto& channel : all.values) {
       detail::populate_in_background(channel.data(), channel.capacity() * sizeof(double));
     }
   }
-  SampleBlock block;
-  while (reader.read_block(block)) {
-    for (std::size_t c = 0; c < block.values.size(); ++c) {
-      log.channels[c].insert(log.channels[c].end(), block.values[c].begin(), block.values[c].end());
-    }
-    log.t_s.insert(log.t_s.end(), block.t_s.begin(), block.t_s.end());
+  while (reader.append_block(all)) {
     if (!sized) {
       sized = true;
       if (const std::int64_t hint = reader.rows_left_hint(); hint > 0) reserve_rows(hint);
     }
     if (progress) progress(reader.bytes_read(), reader.total_bytes());
   }
+  log.channels = std::move(all.values);
+  log.t_s = std::move(all.t_s);
   log.timing = reader.timing();
   if (log.channels.empty() || log.channels[0].empty()) {
     throw ParseError(options.path == "-" ? "<stdin>" : options.path, 0, 0,

@@ -283,6 +283,11 @@ class LogReader {
   /// rows read in this call before the row in error, so that a caller may keep them (`adev
   /// --partial`); the reader must not be read again after a throw.
   bool read_block(SampleBlock& block, std::int64_t max_rows = 65536);
+  /// As read_block, but the rows are appended to what `block` holds (its values must have one
+  /// array per channel, or none): a caller that keeps the whole log reads straight into its
+  /// final arrays instead of copying each block. When it throws, `block` holds what it held
+  /// plus the whole rows read in this call before the row in error.
+  bool append_block(SampleBlock& block, std::int64_t max_rows = 65536);
   /// Timing statistics of what has been read so far (final once read_block returned false).
   const TimingReport& timing() const;
   /// Bytes consumed so far and the total size when known (for progress display), else -1.
