@@ -35,6 +35,11 @@ PROFILES = [
 ]
 
 
+
+def high(value):
+    """An interval's upper end: null in the JSON where the curve does not bound it."""
+    return math.inf if value is None else value
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sigmatau", required=True)
@@ -79,11 +84,11 @@ def main():
                         continue
                     s_true, t_true = min(gms, key=lambda t: abs(math.log(t[1] / g["tau_c_s"])))
                     gm_total += 1
-                    gm_cover += g["ci_low"] <= s_true * DEG_H <= g["ci_high"]
+                    gm_cover += g["ci_low"] <= s_true * DEG_H <= high(g["ci_high"])
                     position_errors.append(abs(g["tau_c_s"] / t_true - 1))
                     if "tau_c_ci_low_s" in g:
                         pos_total += 1
-                        pos_cover += g["tau_c_ci_low_s"] <= t_true <= g["tau_c_ci_high_s"]
+                        pos_cover += g["tau_c_ci_low_s"] <= t_true <= high(g["tau_c_ci_high_s"])
                 if fitted_sin and sin:
                     sin_total += 1
                     sin_cover += fitted_sin["ci_low"] <= sin[0] * DEG_H <= fitted_sin["ci_high"]

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <numbers>
 #include <random>
@@ -38,7 +39,7 @@ struct SlowGm {
   std::vector<std::int64_t> ms;
   Design d;
 
-  SlowGm() {
+  explicit SlowGm(double tau_c = 200) : tau_c_s(tau_c) {
     ms = averaging_factors(TauSpec{}, Statistic::oadev, samples + 1, kTau0);
     d.a = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(ms.size()), kTermCount + 1);
     NoiseTerms unit;
@@ -88,6 +89,34 @@ TEST_CASE("a Gauss-Markov sigma interval that lets T_c float is wider than the f
                                                        gm.samples + 1, kTau0, 0, gm.tau_c_s, q);
   CHECK(t.low < gm.tau_c_s);
   CHECK(t.high > gm.tau_c_s);
+}
+
+TEST_CASE("a T_c side the curve does not bound is reported unbounded, not as the search's end") {
+  // A 5000 s Gauss-Markov on a 2 h log: only its rising side (AVAR ~ sigma^2 tau / T_c) is in
+  // the curve, so a longer T_c with a larger sigma fits as well, up to and past the log's length
+  // (7200 s, the end of the search). The high side is then infinity (JSON null), not 7200 s;
+  // the low side is bounded (a shorter T_c bends the curve within the log).
+  const SlowGm gm(5000);
+  const std::vector<double> tau_c{gm.tau_c_s};
+  const CovarianceBasis basis = build_covariance_basis(gm.ms, gm.samples + 1, kTau0, tau_c);
+  const Iterated fit = iterate(gm.d, SlowGm::kMask, basis);
+  const double q = 1.959964 * 1.959964;
+  const ProfileInterval t = gauss_markov_tau_c_profile(gm.d, SlowGm::kMask, fit.sigma, gm.ms,
+                                                       gm.samples + 1, kTau0, 0, gm.tau_c_s, q);
+  CHECK(t.high == std::numeric_limits<double>::infinity());
+  CHECK(t.low > 0);
+  CHECK(t.low < gm.tau_c_s);
+  // The bench's 200 s GM is bounded on both sides (the test above), so the sides are told
+  // apart by the curve, not by the code.
+  const SlowGm bounded;
+  const std::vector<double> tau_c2{bounded.tau_c_s};
+  const Iterated fit2 = iterate(bounded.d, SlowGm::kMask,
+                                build_covariance_basis(bounded.ms, bounded.samples + 1, kTau0, tau_c2));
+  const ProfileInterval t2 =
+      gauss_markov_tau_c_profile(bounded.d, SlowGm::kMask, fit2.sigma, bounded.ms,
+                                 bounded.samples + 1, kTau0, 0, bounded.tau_c_s, q);
+  CHECK(std::isfinite(t2.high));
+  CHECK(t2.low > 0);
 }
 
 TEST_CASE("the floating-T_c interval covers a seeded Gauss-Markov sigma at its level") {

@@ -34,6 +34,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "fit_added_terms.hpp"
 #include "golden_section.hpp"
@@ -68,8 +69,8 @@ double noise_psd(const TermVector& theta, double tau0_s, const std::vector<doubl
 /// sigma^2 T_c is what a GM's falling side fixes, so sigma^2 at 8x its estimate pairs with a
 /// T_c near 1/8 of it, beyond any bound the bench's curves reach (ln T_c sd <= 0.3).
 constexpr double kProfileSpan = 8;
-/// A T_c interval stays within the range the search tries (fit_added_terms.cpp): from a quarter
-/// sample interval to the log's length. A bound there says the curve does not bound T_c.
+/// A T_c interval is searched within the range the search tries (fit_added_terms.cpp): from a
+/// quarter sample interval to the log's length. A side not bounded there is 0 or infinity.
 constexpr double kTauCShortest = 0.25;
 /// Golden-section steps of a profile's inner T_c search (the bracket of ln 64 to ~1e-5).
 constexpr int kProfileSteps = 30;
@@ -90,10 +91,11 @@ double bisect(F&& rises, double inside, double outside) {
 }
 
 /// The bound of a one-dimensional profile `excess(ln x)` (its deviance above the minimum) on
-/// one side of `ln_x0`: the ln x where it reaches q, or the bracket's end (at most `ln_limit`)
-/// when it never does.
+/// one side of `ln_x0`: the ln x where it reaches q; nullopt when it does not before `ln_limit`
+/// or the bracket's end (the curve does not bound x on that side).
 template <class F>
-double profile_bound(F&& excess, double ln_x0, double q, double direction, double ln_limit) {
+std::optional<double> profile_bound(F&& excess, double ln_x0, double q, double direction,
+                                    double ln_limit) {
   const double step = direction * std::log(kBracketGrowth);
   double inside = ln_x0;
   for (int i = 0; i < kBracketSteps && direction * (ln_limit - inside) > 0; ++i) {
@@ -102,7 +104,7 @@ double profile_bound(F&& excess, double ln_x0, double q, double direction, doubl
     if (excess(next) > q) return bisect([&](double x) { return excess(x) > q; }, inside, next);
     inside = next;
   }
-  return inside;
+  return std::nullopt;
 }
 
 /// (J^T J)^-1 of a whitened Jacobian, inverted with its columns scaled to unit diagonal (the
@@ -207,8 +209,9 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask,
   const double d_min = std::min(deviance(s2_hat), gls(d, mask, sigma).chi2);
   ProfileInterval out;
   const auto excess = [&](double ln_s2) { return deviance(std::exp(ln_s2)) - d_min; };
-  out.high = std::exp(
-      profile_bound(excess, std::log(s2_hat), q, +1, std::numeric_limits<double>::infinity()));
+  const auto high =
+      profile_bound(excess, std::log(s2_hat), q, +1, std::numeric_limits<double>::infinity());
+  out.high = high ? std::exp(*high) : std::numeric_limits<double>::infinity();
   if (deviance(0) - d_min <= q) {
     out.low = 0;
   } else {
@@ -233,8 +236,11 @@ ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eig
   const double shortest = std::log(std::min(kTauCShortest * tau0_s, tau_c_s));
   const double longest =
       std::log(std::max(static_cast<double>(n_phase_points - 1) * tau0_s, tau_c_s));
-  return {std::exp(profile_bound(excess, ln_t0, q, -1, shortest)),
-          std::exp(profile_bound(excess, ln_t0, q, +1, longest))};
+  // A side the curve does not bound within the search range: 0 or infinity, not the range's
+  // end (which would read as a measured bound).
+  const auto low = profile_bound(excess, ln_t0, q, -1, shortest);
+  const auto high = profile_bound(excess, ln_t0, q, +1, longest);
+  return {low ? std::exp(*low) : 0.0, high ? std::exp(*high) : std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace sigmatau::detail

@@ -63,8 +63,8 @@ ProfileInterval gauss_markov_sigma2_profile(const Design& d, Mask mask,
 
 /// Profile-likelihood interval of Gauss-Markov term `g`'s T_c [s]: the T_c whose deviance,
 /// minimised over every kept term's squared parameter, stays within `q` of the fit's (as above),
-/// searched from tau0 / 4 to the log's length (the search's range; a bound there: the curve
-/// does not bound T_c on that side).
+/// searched from tau0 / 4 to the log's length (the search's range). A side the curve does not
+/// bound there is 0 (low) or infinity (high); likewise sigma^2's high side above.
 ProfileInterval gauss_markov_tau_c_profile(const Design& d, Mask mask, const Eigen::MatrixXd& sigma,
                                            const std::vector<std::int64_t>& ms,
                                            std::int64_t n_phase_points, double tau0_s,

@@ -168,9 +168,11 @@ struct ParameterEstimate {
 struct GaussMarkovEstimate {
   double sigma = 0;    ///< stationary standard deviation [rad/s | m/s^2]
   double ci_low = 0;   ///< interval of sigma at the fit's level (T_c estimated too)
-  double ci_high = 0;
+  double ci_high = 0;  ///< infinity when the curve does not bound sigma from above
   double tau_c_s = 0;  ///< correlation time [s] (searched on a grid and refined)
-  double tau_c_ci_low_s = 0;   ///< interval of T_c at the fit's level [s] (log-normal)
+  /// Interval of T_c at the fit's level [s] (profile likelihood, searched from tau0 / 4 to the
+  /// log's length): 0 (low) or infinity (high; JSON null) on a side the curve does not bound.
+  double tau_c_ci_low_s = 0;
   double tau_c_ci_high_s = 0;
   /// Effective degrees of freedom of sigma^2 (Satterthwaite), NaN when not applicable.
   double edf = std::numeric_limits<double>::quiet_NaN();
