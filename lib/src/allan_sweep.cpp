@@ -19,6 +19,7 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <system_error>
 
 #include "allan_dd.hpp"
 #include "allan_sums.hpp"
@@ -413,10 +414,13 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
   // for spilled storage, where two sweeps would compete for the resident budget.
   std::future<void> beside;
   if (threads > 1 && !small_m.empty() && !large_m.empty() && !series.spilled()) {
-    beside = std::async(std::launch::async, small_sweep);
-  } else {
-    small_sweep();
+    try {
+      beside = std::async(std::launch::async, small_sweep);
+    } catch (const std::system_error&) {
+      // no thread to be had (a resource limit): below, on this one
+    }
   }
+  if (!beside.valid()) small_sweep();
   // Joined on every way out (the large sweep may throw: std::bad_alloc).
   struct Join {
     std::future<void>& f;

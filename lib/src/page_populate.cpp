@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #if defined(__linux__)
@@ -45,8 +46,17 @@ class Populator {
     if (last <= first) return;
     std::lock_guard lock(mutex_);
     if (failed_ || stop_) return;
+    if (!worker_.joinable()) {
+      // No thread to be had (a process or address-space limit): the pages fault in as they
+      // are written, as without this file.
+      try {
+        worker_ = std::thread([this] { run(); });
+      } catch (const std::system_error&) {
+        failed_ = true;
+        return;
+      }
+    }
     queue_.push_back({first, last});
-    if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
     wake_.notify_one();
   }
 

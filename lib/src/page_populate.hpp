@@ -12,7 +12,7 @@
 // present is left as it is, a new one reads as zero as it would have), and a range unmapped
 // or reused before the worker reaches it only makes the madvise call fail or fault in pages
 // that the new owner would have faulted in anyway. Without MADV_POPULATE_WRITE (another OS, an
-// older kernel) it does nothing.
+// older kernel) or when no thread can be started (a resource limit) it does nothing.
 #include <cstddef>
 
 namespace sigmatau::detail {
