@@ -393,6 +393,9 @@ void finish_results(json& results, json& warnings, const std::vector<AnalysisCha
       const auto& points = curves[c].front().points;
       json entry = fit_json(channel.name, sensor, reported, points.front().value.tau_s,
                             points.back().value.tau_s);
+      // The axis as analysed (--gyro / --accel, or by name): a channel named c0 has none in
+      // its name for the filter export to read.
+      entry["axis"] = std::string(1, static_cast<char>('x' + channel.role->axis));
       entry["contradictions"] = contradictions_json(reported, sensor);
       if (readings) {
         entry["reported_from"] = "curve_readings";

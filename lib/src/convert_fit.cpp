@@ -40,10 +40,12 @@ std::string fmt(const char* format, double v) {
   return buffer;
 }
 
-/// Sensor and axis of a fit channel: its "quantity" first where there is one, then the
-/// column-name rule every verb uses (classify_channel); with a quantity and a name the rule
-/// does not know, the name's last letter x / y / z is the axis.
-std::optional<ChannelRole> channel_role(const std::string& name, const std::string& quantity) {
+/// Sensor and axis of a fit channel: its "quantity" first where there is one, with its "axis"
+/// (x, y or z) where there is one, then the column-name rule every verb uses
+/// (classify_channel); with a quantity and a name the rule does not know, the name's last letter
+/// x / y / z is the axis.
+std::optional<ChannelRole> channel_role(const std::string& name, const std::string& quantity,
+                                        const std::string& axis) {
   const std::optional<ChannelRole> by_name = classify_channel(name);
   std::optional<Sensor> sensor;
   if (quantity == "angular_rate") sensor = Sensor::gyro;
@@ -51,6 +53,10 @@ std::optional<ChannelRole> channel_role(const std::string& name, const std::stri
   if (!sensor) return by_name;
   ChannelRole role;
   role.sensor = *sensor;
+  if (axis == "x" || axis == "y" || axis == "z") {  // as analysed (analyze's results.json)
+    role.axis = axis[0] - 'x';
+    return role;
+  }
   if (by_name) {
     role.axis = by_name->axis;
     return role;
@@ -135,16 +141,18 @@ FitForFilter read_fit_for_filter(std::string_view json_text, const std::string& 
     const std::string name = detail::optional_text(channel, "name", here).value_or("");
     const detail::JsonField named = here.named(name);
     const std::string quantity = detail::optional_text(channel, "quantity", named).value_or("");
+    const std::string axis = detail::optional_text(channel, "axis", named).value_or("");
     detail::optional_text(channel, "method", named);
     const std::optional<double> p_value =
         detail::optional_number(channel, "p_value", named, NumberRule::probability, true);
     const std::optional<double> misfit_tau_s =
         detail::optional_number(channel, "misfit_tau_s", named, NumberRule::positive, true);
-    const std::optional<ChannelRole> role = channel_role(name, quantity);
+    const std::optional<ChannelRole> role = channel_role(name, quantity, axis);
     if (!role) {
       throw Error(file + ": channel \"" + name +
-                  "\": cannot tell its sensor and axis (expected a \"quantity\" or a name such as "
-                  "gx / gyro_x / angular_velocity_x, ax / accel_x / linear_acceleration_x)");
+                  "\": cannot tell its sensor and axis (expected a \"quantity\" and \"axis\", "
+                  "or a name such as gx / gyro_x / angular_velocity_x, ax / accel_x / "
+                  "linear_acceleration_x)");
     }
     if (!channel.contains("parameters")) continue;
     const json& p = channel["parameters"];

@@ -77,3 +77,22 @@ sigmatau_cli_test(NAME cli_analyze_unit_and_accel_unit EXIT 2
   STDERR "--unit deg/s names one unit for every column; with --gyro-unit / --accel-unit leave it out"
   ARGS analyze ${PROJECT_SOURCE_DIR}/tests/data/cli/imu6_10Hz.csv --time-column t --unit deg/s
        --accel-unit m/s^2 -o ${analyze_dir}/unit_and_accel_unit --force)
+
+# A raw binary log has channels c0..c5: --gyro / --accel give their sensors and axes, and the
+# filter files are written from them (before: analyze computed everything, then stopped with
+# 'channel "c0": cannot tell its sensor and axis' and wrote nothing). results.json records
+# each fitted channel's axis.
+set(analyze_binary_roles [=[
+run simulate --spec adi_adis16465 --sensors gyro,accel --rate 100 --duration 20min --format f32 -o "$W/imu.f32"
+expect 0 ""
+run analyze "$W/imu.f32" --binary f32 --channels 6 --gyro c0,c1,c2 --accel c3,c4,c5 --rate 100 -o "$W/out"
+expect 0 ""
+for f in kalibr_imu_100Hz.yaml px4_ekf2_100Hz.params filter_100Hz.json report.html; do
+  [ -s "$W/out/$f" ] || fail "$f not written"
+done
+grep -q '"axis": "z"' "$W/out/results.json" || grep -q '"axis":"z"' "$W/out/results.json" || fail "no axis in results.json"
+echo "ok: filter files from c0..c5"
+]=])
+add_test(NAME cli_analyze_binary_roles
+         COMMAND bash -c "${sigmatau_cli_shell_prologue}${analyze_binary_roles}" analyze_binary_roles
+                 $<TARGET_FILE:sigmatau_cli> ${analyze_dir}/binary_roles none)
