@@ -18,9 +18,11 @@
 #include <complex>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "fftw_planner.hpp"
 #include "phase_store.hpp"
@@ -64,7 +66,7 @@ std::vector<double> make_window(Window window, std::int64_t length) {
 }
 
 /// Power correlation r_d of periodogram bins d apart (d = 1..kMaxCorrelatedBins), white noise.
-std::vector<double> bin_correlations(const std::vector<double>& w) {
+std::vector<double> compute_bin_correlations(const std::vector<double>& w) {
   double u = 0;
   for (double v : w) u += v * v;
   std::vector<double> r(kMaxCorrelatedBins + 1, 0.0);
@@ -79,6 +81,22 @@ std::vector<double> bin_correlations(const std::vector<double>& w) {
     r[d] = std::norm(sum) / (u * u);
   }
   return r;
+}
+
+/// bin_correlations of a window, computed once per window and length in the process: each
+/// call costs kMaxCorrelatedBins x length sines and cosines (0.15 s at a 2^20 segment), and
+/// analyze asks twice per channel (log binning and the noise-density band).
+const std::vector<double>& bin_correlations(Window window, std::int64_t length) {
+  static std::mutex mutex;
+  static std::map<std::pair<Window, std::int64_t>, std::vector<double>> known;
+  std::lock_guard lock(mutex);
+  auto it = known.find({window, length});
+  if (it == known.end()) {
+    it = known.emplace(std::make_pair(window, length),
+                       compute_bin_correlations(make_window(window, length)))
+             .first;
+  }
+  return it->second;
 }
 
 /// Variance-inflation factor of a mean of `count` consecutive bins (>= 1).
@@ -323,7 +341,7 @@ PsdCurve welch_psd(std::span<const double> samples, double rate_hz, const WelchO
 
 PsdCurve log_binned(const PsdCurve& psd, int per_decade) {
   if (per_decade < 1) throw Error("log binning needs at least 1 bin per decade");
-  const auto r = bin_correlations(make_window(psd.window, psd.segment_length));
+  const std::vector<double>& r = bin_correlations(psd.window, psd.segment_length);
   PsdCurve binned = psd;
   binned.frequency_hz.clear();
   binned.psd.clear();
@@ -440,7 +458,7 @@ NoiseDensity noise_density(const PsdCurve& psd, std::optional<std::pair<double, 
     if (!band) band = std::make_pair(0.1 * kMaxBandFractionOfNyquist * nyquist,
                                      kMaxBandFractionOfNyquist * nyquist);
   }
-  const auto r = bin_correlations(make_window(psd.window, psd.segment_length));
+  const std::vector<double>& r = bin_correlations(psd.window, psd.segment_length);
   const BandLevel level = band_level(psd, r, band->first, band->second);
   if (level.bins == 0) {
     throw Error("noise-density band " + std::to_string(band->first) + ":" +
