@@ -18,10 +18,17 @@ void WarmupBlockSums::add(std::span<const double> values) {
   const std::int64_t block = blocks_.block_samples;
   if (block == 0) return;
   const std::int64_t end = block * kWarmupBlocks;  // samples past the last block are not used
-  for (const double v : values) {
-    if (seen_ >= end) return;
-    sum_ += v;
-    ++seen_;
+  // A block's piece at a time (the additions those of one value after another, in order).
+  std::size_t i = 0;
+  while (i < values.size() && seen_ < end) {
+    const std::int64_t left_in_block = block - seen_ % block;
+    const std::size_t n =
+        static_cast<std::size_t>(std::min<std::int64_t>(left_in_block, static_cast<std::int64_t>(values.size() - i)));
+    double sum = sum_;
+    for (std::size_t k = 0; k < n; ++k) sum += values[i + k];
+    sum_ = sum;
+    i += n;
+    seen_ += static_cast<std::int64_t>(n);
     if (seen_ % block == 0) {
       blocks_.means[static_cast<std::size_t>(seen_ / block - 1)] = sum_ / static_cast<double>(block);
       sum_ = 0;
