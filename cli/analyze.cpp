@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <system_error>
 
 #include "analysis_chain.hpp"
 #include "channel_units.hpp"
@@ -117,8 +121,10 @@ void check_before_reading(const AnalyzeArguments& args) {
   check_sheet_applies(args.chain, args.log.input, channels);
 }
 
-/// The provenance fields of the input file (size and CRC-32; none for stdin).
-AnalysisInput input_provenance(const std::string& path, DataKind kind) {
+/// The provenance fields of the input file (size and CRC-32; none for stdin); `crc32` when it
+/// was computed already.
+AnalysisInput input_provenance(const std::string& path, DataKind kind,
+                               std::optional<std::string> crc32 = std::nullopt) {
   AnalysisInput input;
   input.path = path;
   input.kind = kind;
@@ -126,7 +132,7 @@ AnalysisInput input_provenance(const std::string& path, DataKind kind) {
     std::error_code ec;
     input.bytes = static_cast<std::int64_t>(std::filesystem::file_size(input.path, ec));
     if (ec) input.bytes = -1;
-    input.crc32 = file_crc32(input.path);
+    input.crc32 = crc32 ? std::move(*crc32) : file_crc32(input.path);
   }
   return input;
 }
@@ -176,8 +182,20 @@ void run_analyze(const AnalyzeArguments& args) {
     run_analyze_bounded(args);
     return;
   }
+  // The file's CRC-32 (a second pass over it) on another thread while it is read.
+  std::future<std::string> crc32;
+  if (args.log.input != "-") {
+    try {
+      crc32 = std::async(std::launch::async, [path = args.log.input] { return file_crc32(path); });
+    } catch (const std::system_error&) {
+      // no thread to be had: computed after the read, as before
+    }
+  }
   LoadedChannels loaded = load_channels(log_as_read(args.log));
-  AnalysisInput input = input_provenance(loaded.log.path, loaded.kind);
+  const bool same_file = crc32.valid() && loaded.log.path == args.log.input;
+  AnalysisInput input = input_provenance(
+      loaded.log.path, loaded.kind,
+      same_file ? std::optional<std::string>(crc32.get()) : std::nullopt);
   input.rate_hz = loaded.rate_hz;
   if (loaded.log.timing.has_time) input.timing = loaded.log.timing;
   for (const BoundedChannel& chosen : choose_channels(loaded.log.channel_names, args, true)) {

@@ -11,9 +11,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "analysis_results.hpp"
 #include "dynamic_windows.hpp"
+#include "parallel_items.hpp"
 #include "sigmatau/allan_curve.hpp"
 #include "sigmatau/allan_segments.hpp"
 #include "sigmatau/data_checks.hpp"
@@ -61,13 +65,19 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
     std::array<std::vector<std::span<const double>>, 2> triad_axes;
     std::array<std::vector<std::string>, 2> triad_names;
     std::array<std::string, 2> triad_unit;
-    for (std::size_t c = 0; c < input.channels.size(); ++c) {
+    // The run and outlier checks channel-parallel, their warnings joined in channel order.
+    std::vector<std::vector<std::string>> found(input.channels.size());
+    detail::for_each_item_parallel(input.channels.size(), options.threads, [&](std::size_t c) {
       const auto& channel = input.channels[c];
-      for (const auto& w : check_runs(channel.values, channel.name)) warnings.push_back(w.message);
+      for (const auto& w : check_runs(channel.values, channel.name)) found[c].push_back(w.message);
       OutlierChecker outliers = detail::outlier_checker(
           channel.name, input.kind, c < input.input_units.size() ? input.input_units[c] : "");
       outliers.add(channel.values);
-      if (const auto w = outliers.finish()) warnings.push_back(w->message);
+      if (const auto w = outliers.finish()) found[c].push_back(w->message);
+    });
+    for (std::size_t c = 0; c < input.channels.size(); ++c) {
+      const auto& channel = input.channels[c];
+      for (std::string& w : found[c]) warnings.push_back(std::move(w));
       if (!channel.role || input.kind != DataKind::rate) continue;
       const int s = channel.role->sensor == Sensor::gyro ? 0 : 1;
       triad_axes[s].emplace_back(channel.values);
@@ -98,11 +108,15 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   json trim = detail::trim_mode_json(options);
   std::int64_t trim_samples = 0;
   if (options.trim == TrimMode::automatic) {
-    std::vector<std::vector<double>> rates;
-    std::vector<std::span<const double>> spans;
-    for (const auto& c : input.channels) rates.push_back(to_rate_series(c.values, input.kind, input.rate_hz));
-    for (const auto& r : rates) spans.emplace_back(r);
-    const WarmupDecision d = detect_warmup(spans, input.rate_hz);
+    // detect_warmup's block means, channel-parallel (each channel's as it computes them).
+    std::vector<WarmupBlocks> blocks(input.channels.size());
+    detail::for_each_item_parallel(input.channels.size(), options.threads, [&](std::size_t c) {
+      const std::vector<double> rate = to_rate_series(input.channels[c].values, input.kind, input.rate_hz);
+      WarmupBlockSums sums(static_cast<std::int64_t>(rate.size()));
+      sums.add(rate);
+      blocks[c] = sums.blocks();
+    });
+    const WarmupDecision d = decide_warmup(blocks, input.rate_hz);
     trim_samples = d.trim_samples;
     trim["reason"] = d.reason;
     if (d.channel >= 0) trim["channel"] = input.channels[d.channel].name;
@@ -143,17 +157,22 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
                          "joined end to end, so a window may span a gap");
     }
   } else {
+    std::vector<std::optional<PhaseSeries>> built(input.channels.size());
+    detail::for_each_item_parallel(input.channels.size(), options.threads, [&](std::size_t c) {
+      built[c] = PhaseSeries::from_samples(input.channels[c].values, input.kind, 1.0 / input.rate_hz);
+    });
     std::vector<PhaseSeries> series;
-    for (const auto& c : input.channels) {
-      series.push_back(PhaseSeries::from_samples(c.values, input.kind, 1.0 / input.rate_hz));
-    }
+    for (auto& b : built) series.push_back(std::move(*b));
     curves = compute_allan_curves(series, options.statistics, options.taus, options.confidence,
                                   options.threads, options.edf_model);
   }
 
-  // PSD and noise density per channel.
-  results["channels"] = json::array();
-  for (std::size_t c = 0; c < input.channels.size(); ++c) {
+  // PSD and noise density per channel, channel-parallel (each channel's entry and warnings
+  // kept apart, then joined in channel order: the same document as one after the other).
+  std::vector<json> entries(input.channels.size());
+  std::vector<std::vector<std::string>> channel_warnings(input.channels.size());
+  detail::for_each_item_parallel(input.channels.size(), options.threads, [&](std::size_t c) {
+    std::vector<std::string>& notes = channel_warnings[c];
     const auto& channel = input.channels[c];
     json entry = detail::channel_json(channel, c < input.input_units.size() ? input.input_units[c] : "",
                                       curves[c]);
@@ -161,7 +180,7 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
       const auto total = static_cast<std::int64_t>(channel.values.size());
       const detail::DynamicWindows plan = detail::plan_dynamic_windows(total, options.dynamic_windows);
       const std::int64_t length = plan.length;
-      if (c == 0 && !plan.warning.empty()) warnings.push_back(plan.warning);
+      if (c == 0 && !plan.warning.empty()) notes.push_back(plan.warning);
       json windows = json::array();
       for (int w = 0; w < plan.windows; ++w) {
         const std::int64_t start = w * length / 2;
@@ -188,9 +207,14 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
                                  : welch_psd(rates.front(), input.rate_hz, options.welch);
       detail::add_psd(entry, psd, channel, options);
     } catch (const Error& e) {
-      warnings.push_back(channel.name + ": no PSD (" + e.what() + ")");
+      notes.push_back(channel.name + ": no PSD (" + e.what() + ")");
     }
-    results["channels"].push_back(entry);
+    entries[c] = std::move(entry);
+  });
+  results["channels"] = json::array();
+  for (std::size_t c = 0; c < entries.size(); ++c) {
+    for (std::string& w : channel_warnings[c]) warnings.push_back(std::move(w));
+    results["channels"].push_back(std::move(entries[c]));
   }
 
   detail::finish_results(results, warnings, input.channels, curves, samples, input.kind,
