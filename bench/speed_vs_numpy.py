@@ -11,12 +11,17 @@ temporary directory. Each round runs, in turn and each in its own process under
     difference x[2m:] - 2 x[m:-m] + x[:-2m] and its mean square (as allantools' oadev does,
     without intervals or noise identification);
   - every statistic alone and the combination oadev,mdev,ohdev,totdev (default threads), at
-    the sizes given by --stat-sizes.
+    the sizes given by --stat-sizes;
+  - `analyze` on a 3 h, 1 kHz, 6-channel f32 log (65 M values, simulated from the ADIS16465
+    sheet) with --spec, report, plots and filter files (--analyze-runs rounds; issue 25 asks
+    <= 4 s), and the built-in `demo`; with --baseline BIN the demo also runs on that build,
+    alternately.
 The medians of --runs rounds (wall, user, system, peak RSS) go to a Markdown table, with the
 ratio numpy wall / sigmatau wall and the machine's CPU model and load.
 
 Usage: bench/speed_vs_numpy.py --sigmatau build/cli/sigmatau [--sizes 1e6,1e7,1e8] [--runs 5]
-       [--stat-sizes 1e7] [--stat-runs 3] [--out bench/results_speed.md] [--tmp DIR]
+       [--stat-sizes 1e7] [--stat-runs 3] [--analyze-runs 3] [--baseline BIN]
+       [--out bench/results_speed.md] [--tmp DIR]
 Needs python3 with numpy and /usr/bin/time (GNU). The 1e8 file takes 800 MB in --tmp.
 """
 import argparse
@@ -108,6 +113,8 @@ def main():
     p.add_argument("--stat-runs", type=int, default=3)
     p.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results_speed.md"))
     p.add_argument("--tmp", default=None)
+    p.add_argument("--analyze-runs", type=int, default=3)
+    p.add_argument("--baseline", default=None)
     a = p.parse_args()
     sizes = [int(float(s)) for s in a.sizes.split(",") if s]
     stat_sizes = [int(float(s)) for s in a.stat_sizes.split(",") if s]
@@ -118,6 +125,7 @@ def main():
     load_before = os.getloadavg()
     rows = []  # (size, what, (wall, user, sys, rss), numpy wall)
     stat_rows = []
+    chain_rows = []  # (what, (wall, user, sys, rss))
     try:
         for n in sorted(set(sizes) | set(stat_sizes)):
             path = os.path.join(tmp, f"x{n}.f64")
@@ -144,9 +152,35 @@ def main():
                     stat_rows.append((n, s, median_row(per[s])))
                 print(f"{label(n)} statistics done", file=sys.stderr)
             os.remove(path)
+        if a.analyze_runs > 0:
+            log = os.path.join(tmp, "imu3h.f32")
+            subprocess.run([a.sigmatau, "simulate", "--spec", "adi_adis16465", "--sensors",
+                            "gyro,accel", "--rate", "1000", "--duration", "3h", "--format", "f32",
+                            "-o", log, "--force"], check=True, stdout=subprocess.DEVNULL)
+            report = os.path.join(tmp, "report")
+            analyze = [a.sigmatau, "analyze", log, "--binary", "f32", "--channels", "6",
+                       "--gyro", "c0,c1,c2", "--accel", "c3,c4,c5", "--rate", "1000",
+                       "--spec", "adi_adis16465", "-o", report, "--force"]
+            demo = ["demo", "-o", os.path.join(tmp, "demo"), "--force"]
+            runs = {"analyze": [], "demo": [], "demo_base": []}
+            for _ in range(a.analyze_runs):
+                runs["analyze"].append(timed(analyze))
+                runs["demo"].append(timed([a.sigmatau] + demo))
+                if a.baseline:
+                    runs["demo_base"].append(timed([a.baseline] + demo))
+            chain_rows.append(("analyze, 3 h x 6 channels at 1 kHz, f32 (65 M values), --spec",
+                               median_row(runs["analyze"])))
+            chain_rows.append(("demo (10 h x 6 channels at 100 Hz, 21.6 M values)", median_row(runs["demo"])))
+            if a.baseline:
+                chain_rows.append(("demo, the --baseline build",
+                                   median_row(runs["demo_base"])))
+            print("analyze done", file=sys.stderr)
     finally:
-        for name in os.listdir(tmp):
-            os.remove(os.path.join(tmp, name))
+        for root, dirs, files in os.walk(tmp, topdown=False):
+            for name in files:
+                os.remove(os.path.join(root, name))
+            for name in dirs:
+                os.rmdir(os.path.join(root, name))
         os.rmdir(tmp)
     load_after = os.getloadavg()
     out = []
@@ -172,6 +206,14 @@ def main():
         for n, s, (wall, user, sys_, rss) in stat_rows:
             base = next(r[2][0] for r in stat_rows if r[0] == n and r[1] == "oadev")
             out.append(f"| {label(n)} | {s} | {wall:.3f} | {user:.3f} | {sys_:.3f} | {rss / 1e6:.0f} | {wall / base:.2f} |")
+    if chain_rows:
+        out.append("")
+        out.append(f"The whole chain, default threads, medians of {a.analyze_runs} alternating rounds "
+                   "(report, plots, filter files; page cache warm).\n")
+        out.append("| run | wall [s] | user [s] | system [s] | peak RSS [MB] |")
+        out.append("|---|---|---|---|---|")
+        for what, (wall, user, sys_, rss) in chain_rows:
+            out.append(f"| {what} | {wall:.2f} | {user:.2f} | {sys_:.2f} | {rss / 1e6:.0f} |")
     text = "\n".join(out) + "\n"
     with open(a.out, "w") as f:
         f.write(text)
