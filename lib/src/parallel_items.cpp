@@ -5,6 +5,7 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -27,13 +28,18 @@ void for_each_item_parallel(std::size_t items, unsigned threads,
       }
     }
   };
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& thread : pool) thread.join();
+  // threads - 1 helpers and this thread; a helper that cannot be started (a resource limit)
+  // leaves its share to the others, this thread always among them.
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) {
+    try {
+      pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+      break;
+    }
   }
+  worker();
+  for (auto& thread : pool) thread.join();
   if (first_error) std::rethrow_exception(first_error);
 }
 
