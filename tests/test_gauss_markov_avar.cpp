@@ -48,7 +48,7 @@ TEST_CASE("Gauss-Markov AVAR: the derivation above is sampled_avar's closed form
       // at m = 1 about 1e-7), so it keeps only ~1e-16 / 1e-7 relative accuracy (2.3e-6 measured
       // at m = 1); the library's form is written with expm1 to avoid that. 1e-5 for that case,
       // 1e-9 elsewhere, where the cancellation is milder than (1e-2)^2.
-      const double cancellation = m * (1 - phi) < 0.01 ? 1e-5 : 1e-9;
+      const double cancellation = static_cast<double>(m) * (1 - phi) < 0.01 ? 1e-5 : 1e-9;
       SIGMATAU_CHECK_REL(sampled_avar(t, NoiseTerm::gauss_markov, m, Sampling{0.01, 0, false}),
                          derived_avar(2e-3, phi, m), cancellation);
     }
