@@ -108,13 +108,10 @@ AnalysisOutput run_analysis(AnalysisInput input, const AnalysisOptions& options)
   json trim = detail::trim_mode_json(options);
   std::int64_t trim_samples = 0;
   if (options.trim == TrimMode::automatic) {
-    // detect_warmup's block means, channel-parallel (each channel's as it computes them).
+    // detect_warmup, its channels' block means computed in parallel.
     std::vector<WarmupBlocks> blocks(input.channels.size());
     detail::for_each_item_parallel(input.channels.size(), options.threads, [&](std::size_t c) {
-      const std::vector<double> rate = to_rate_series(input.channels[c].values, input.kind, input.rate_hz);
-      WarmupBlockSums sums(static_cast<std::int64_t>(rate.size()));
-      sums.add(rate);
-      blocks[c] = sums.blocks();
+      blocks[c] = warmup_blocks(to_rate_series(input.channels[c].values, input.kind, input.rate_hz));
     });
     const WarmupDecision d = decide_warmup(blocks, input.rate_hz);
     trim_samples = d.trim_samples;

@@ -70,13 +70,15 @@ WarmupDecision decide_warmup(const std::vector<WarmupBlocks>& channels, double r
   return decision;
 }
 
+WarmupBlocks warmup_blocks(std::span<const double> channel) {
+  WarmupBlockSums sums(static_cast<std::int64_t>(channel.size()));
+  sums.add(channel);
+  return sums.blocks();
+}
+
 WarmupDecision detect_warmup(const std::vector<std::span<const double>>& channels, double rate_hz) {
   std::vector<WarmupBlocks> blocks;
-  for (const auto& x : channels) {
-    WarmupBlockSums sums(static_cast<std::int64_t>(x.size()));
-    sums.add(x);
-    blocks.push_back(sums.blocks());
-  }
+  for (const auto& x : channels) blocks.push_back(warmup_blocks(x));
   return decide_warmup(blocks, rate_hz);
 }
 

@@ -53,6 +53,10 @@ class WarmupBlockSums {
   std::int64_t seen_ = 0;
 };
 
+/// The block means of one whole channel (WarmupBlockSums fed it at once): what detect_warmup
+/// computes per channel, for callers that compute the channels apart (in parallel).
+WarmupBlocks warmup_blocks(std::span<const double> channel);
+
 /// detect_warmup's decision from every channel's block means (channel order kept: the reason
 /// names the first channel with the longest trim).
 WarmupDecision decide_warmup(const std::vector<WarmupBlocks>& channels, double rate_hz);
