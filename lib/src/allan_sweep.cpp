@@ -421,13 +421,8 @@ std::vector<double> overlapping_sums(const PhaseSeries& series, int order,
     }
   }
   if (!beside.valid()) small_sweep();
-  // Joined on every way out (the large sweep may throw: std::bad_alloc).
-  struct Join {
-    std::future<void>& f;
-    ~Join() {
-      if (f.valid()) f.wait();
-    }
-  } join{beside};
+  // Should the large sweep throw (std::bad_alloc), `beside` waits for the small one as it is
+  // destroyed (a std::async future does), before small_acc goes.
   if (!large_m.empty()) {
     const std::shared_ptr<const CompactPhase> phase = compact_phase(series);
     // Octave runs (multiples of kBaseBlock) by chains; every other factor by blocks.
