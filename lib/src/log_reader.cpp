@@ -138,7 +138,7 @@ bool LogReader::read_block(SampleBlock& block, std::int64_t max_rows) {
 
 bool LogReader::append_block(SampleBlock& block, std::int64_t max_rows) {
   Impl& m = *impl_;
-  if (!(max_rows >= 1)) throw Error("read_block: max_rows must be >= 1");
+  if (!(max_rows >= 1)) throw Error("append_block: max_rows must be >= 1");
   const std::size_t channels = m.selection->channel_columns.size();
   if (block.values.empty()) block.values.resize(channels);
   if (block.values.size() != channels) {
