@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -69,7 +70,14 @@ class PageReleaser {
     budget_ = budget;
     if (!thread_.joinable()) {
       stop_ = false;
-      thread_ = std::thread([this] { run(); });
+      try {
+        thread_ = std::thread([this] { run(); });
+      } catch (const std::system_error&) {
+        // No thread to be had (a process at its thread limit): the loops that stream through
+        // spilled buffers call enforce_spill_budget() every few MiB, which keeps the budget
+        // alone, a little less promptly. Throwing here would leave this mapping listed after
+        // its buffer's constructor failed.
+      }
     }
   }
 
