@@ -156,13 +156,29 @@ using Lanes = double __attribute__((vector_size(kFactorLanes * sizeof(double))))
 constexpr std::int64_t kChunk = 128;
 static_assert(kBlock % kChunk == 0 && kChunk % kLanes == 0, "blocks are made of chunks");
 
-/// out[t * kFactorLanes] = D2(n0 + t) for t < kChunk: fill_d2 into one lane of an interleaved
-/// buffer.
-SIGMATAU_SIMD_CLONES void fill_d2_lane(const double* h, const double* l, std::int64_t m,
-                                        std::int64_t n0, double* out) {
-  double tmp[kChunk];
-  fill_d2(h, l, m, n0, kChunk, tmp);
-  for (std::int64_t i = 0; i < kChunk; ++i) out[i * kFactorLanes] = tmp[i];
+/// Rows row[g * kChunk + t] (factor g, step t) at steps t..t+kFactorLanes-1 as kFactorLanes
+/// vectors, vector k holding step t + k of every factor: an 8 x 8 transpose in three rounds of
+/// shuffles (pairs, then quads, then halves), data movement only.
+[[gnu::always_inline]] inline void transpose_rows(const double* row, std::int64_t t, Lanes (&out)[kFactorLanes]) {
+  static_assert(kFactorLanes == 8, "the shuffles are written for 8 x 8");
+  Lanes r[8];
+  for (int g = 0; g < 8; ++g) __builtin_memcpy(&r[g], row + g * kChunk + t, sizeof(Lanes));
+  Lanes p[8];
+  for (int g = 0; g < 8; g += 2) {
+    p[g] = __builtin_shufflevector(r[g], r[g + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+    p[g + 1] = __builtin_shufflevector(r[g], r[g + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+  }
+  Lanes q[8];
+  for (int g = 0; g < 8; g += 4) {
+    q[g] = __builtin_shufflevector(p[g], p[g + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+    q[g + 2] = __builtin_shufflevector(p[g], p[g + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    q[g + 1] = __builtin_shufflevector(p[g + 1], p[g + 3], 0, 1, 8, 9, 4, 5, 12, 13);
+    q[g + 3] = __builtin_shufflevector(p[g + 1], p[g + 3], 2, 3, 10, 11, 6, 7, 14, 15);
+  }
+  for (int k = 0; k < 4; ++k) {
+    out[k] = __builtin_shufflevector(q[k], q[k + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    out[k + 4] = __builtin_shufflevector(q[k], q[k + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+  }
 }
 
 /// The running values and lanes of kFactorLanes factors in lock step.
@@ -172,20 +188,23 @@ struct LockStep {
 };
 
 /// One chunk (kChunk steps) of modified_finish for kFactorLanes factors at once: lead and trail
-/// hold D2(j + m + t) and D2(j + t) of factor g at [t * kFactorLanes + g]. Steps within a block
-/// go to the block's lanes acc[t mod kLanes], as in modified_finish.
+/// hold D2(j + m + t) and D2(j + t) of factor g at [g * kChunk + t] (one row per factor, as
+/// fill_d2 writes them; turned into one vector per step by transpose_rows). Steps within a
+/// block go to the block's lanes acc[t mod kLanes], as in modified_finish.
 SIGMATAU_SIMD_CLONES void modified_chunk_lanes(const double* lead, const double* trail,
                                                 LockStep& state) {
   Lanes s = state.s;
   Lanes c = state.c;
   Lanes acc[kLanes];
   for (int k = 0; k < kLanes; ++k) acc[k] = state.acc[k];
+  static_assert(kLanes == kFactorLanes, "a transposed block is one block of lanes");
   for (std::int64_t t = 0; t < kChunk; t += kLanes) {
+    Lanes ups[kFactorLanes], downs[kFactorLanes];
+    transpose_rows(lead, t, ups);
+    transpose_rows(trail, t, downs);
     for (int k = 0; k < kLanes; ++k) {
-      Lanes up, down;
-      __builtin_memcpy(&up, lead + (t + k) * kFactorLanes, sizeof up);
-      __builtin_memcpy(&down, trail + (t + k) * kFactorLanes, sizeof down);
-      down = -down;
+      const Lanes up = ups[k];
+      const Lanes down = -downs[k];
       const Lanes v = s + c;
       acc[k] += v * v;
       // two_sum(s, up), then two_sum(that, -down), as in modified_finish.
@@ -224,9 +243,10 @@ namespace {
 /// modified_sums for the factors m (at most kFactorLanes, ascending), into sums.
 void modified_group(const double* h, const double* l, std::span<const std::int64_t> m,
                     std::span<const std::int64_t> counts, std::span<double> sums) {
-  // modified_start needs kBlock doubles of lead.
+  // modified_start and modified_finish use kBlock doubles of lead and trail; the lock step one
+  // row of kChunk per factor of each.
   std::vector<double> lead(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
-  std::vector<double> trail(static_cast<std::size_t>(kChunk * kFactorLanes));
+  std::vector<double> trail(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
   {
     const std::size_t G = m.size();
     SIGMATAU_ASSERT(G <= kFactorLanes, "a group has at most kFactorLanes factors");
@@ -251,8 +271,8 @@ void modified_group(const double* h, const double* l, std::span<const std::int64
         for (std::size_t g = 0; g < G; ++g) {
           if (b >= full[g]) continue;
           const std::int64_t mg = m[g];
-          fill_d2_lane(h, l, mg, j + mg, lead.data() + g);
-          fill_d2_lane(h, l, mg, j, trail.data() + g);
+          fill_d2(h, l, mg, j + mg, kChunk, lead.data() + g * kChunk);
+          fill_d2(h, l, mg, j, kChunk, trail.data() + g * kChunk);
         }
         modified_chunk_lanes(lead.data(), trail.data(), lanes);
       }
@@ -263,10 +283,8 @@ void modified_group(const double* h, const double* l, std::span<const std::int64
         state[g].c = lanes.c[g];
         state[g].total.add(block_total[g]);
         if (b + 1 == full[g]) {
-          for (std::int64_t t = 0; t < kChunk; ++t) {
-            lead[static_cast<std::size_t>(t * kFactorLanes) + g] = 0.0;
-            trail[static_cast<std::size_t>(t * kFactorLanes) + g] = 0.0;
-          }
+          std::fill_n(lead.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
+          std::fill_n(trail.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
         }
       }
     }
