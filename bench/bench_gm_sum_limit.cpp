@@ -57,20 +57,14 @@ NoiseTerms gm_sum_truth() {
   return t;
 }
 
-/// Exact AVAR of one unit term at each factor.
+/// Exact AVAR of one unit term at each factor (a GM of correlation time tau_c_s).
 Eigen::VectorXd unit_column(NoiseTerm term, const std::vector<std::int64_t>& ms, double tau_c_s) {
-  NoiseTerms t;
-  switch (term) {
-    case NoiseTerm::quantization: t.quantization = 1; break;
-    case NoiseTerm::white: t.white = 1; break;
-    case NoiseTerm::bias_instability: t.bias_instability = 1; break;
-    case NoiseTerm::rate_random_walk: t.rate_random_walk = 1; break;
-    case NoiseTerm::rate_ramp: t.rate_ramp = 1; break;
-    default: t.gauss_markov = {GaussMarkov{1, tau_c_s}}; break;
-  }
+  NoiseTerms ones;
+  ones.quantization = ones.white = ones.bias_instability = ones.rate_random_walk = ones.rate_ramp = 1;
+  ones.gauss_markov = {GaussMarkov{1, tau_c_s}};
   Eigen::VectorXd c(static_cast<Eigen::Index>(ms.size()));
   for (std::size_t j = 0; j < ms.size(); ++j) {
-    c(static_cast<Eigen::Index>(j)) = sampled_avar(t, ms[j], Sampling{kTau0, 0, false});
+    c(static_cast<Eigen::Index>(j)) = sampled_avar(ones, term, ms[j], Sampling{kTau0, 0, false});
   }
   return c;
 }

@@ -157,6 +157,8 @@ TEST_CASE("two additions at once are tried when no single one lowers the criteri
   const AllanCurve curve = test::exact_oadev_curve(truth, kSamples, kTau0);
   const CurveSource source{kTau0, kSamples + 1, 0};
   std::vector<std::int64_t> ms;
+  NoiseTerms ones;  // each term's AVAR at unit parameter
+  ones.quantization = ones.white = ones.bias_instability = ones.rate_random_walk = ones.rate_ramp = 1.0;
   detail::Design d;
   d.a.resize(static_cast<Eigen::Index>(curve.points.size()), detail::kTermCount);
   d.v.resize(static_cast<Eigen::Index>(curve.points.size()));
@@ -166,15 +168,7 @@ TEST_CASE("two additions at once are tried when no single one lowers the criteri
     ms.push_back(m);
     d.v(row) = curve.points[j].value.dev * curve.points[j].value.dev;
     for (const NoiseTerm term : kFitTerms) {
-      NoiseTerms unit;
-      switch (term) {
-        case NoiseTerm::quantization: unit.quantization = 1.0; break;
-        case NoiseTerm::white: unit.white = 1.0; break;
-        case NoiseTerm::bias_instability: unit.bias_instability = 1.0; break;
-        case NoiseTerm::rate_random_walk: unit.rate_random_walk = 1.0; break;
-        default: unit.rate_ramp = 1.0; break;
-      }
-      d.a(row, detail::term_index(term)) = sampled_avar(unit, m, Sampling{kTau0, 0, false});
+      d.a(row, detail::term_index(term)) = sampled_avar(ones, term, m, Sampling{kTau0, 0, false});
     }
   }
   const auto basis = detail::covariance_basis(ms, source.n_phase_points, kTau0);

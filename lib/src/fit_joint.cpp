@@ -242,17 +242,12 @@ Eigen::MatrixXd design_matrix(const std::vector<std::int64_t>& ms, const CurveSo
   }
   const Sampling sampling{source.tau0_s, source.flicker_taps, false};
   Eigen::MatrixXd a(static_cast<Eigen::Index>(ms.size()), kTermCount);
+  // Each term's AVAR at unit parameter: sampled_avar of that term alone.
+  NoiseTerms ones;
+  ones.quantization = ones.white = ones.bias_instability = ones.rate_random_walk = ones.rate_ramp = 1.0;
   for (std::size_t j = 0; j < ms.size(); ++j) {
     for (int k = 0; k < kTermCount; ++k) {
-      NoiseTerms unit;
-      switch (kFitTerms[static_cast<std::size_t>(k)]) {
-        case NoiseTerm::quantization: unit.quantization = 1.0; break;
-        case NoiseTerm::white: unit.white = 1.0; break;
-        case NoiseTerm::bias_instability: unit.bias_instability = 1.0; break;
-        case NoiseTerm::rate_random_walk: unit.rate_random_walk = 1.0; break;
-        default: unit.rate_ramp = 1.0;
-      }
-      a(static_cast<Eigen::Index>(j), k) = sampled_avar(unit, ms[j], sampling);
+      a(static_cast<Eigen::Index>(j), k) = sampled_avar(ones, kFitTerms[static_cast<std::size_t>(k)], ms[j], sampling);
     }
   }
   std::lock_guard lock(mutex);
