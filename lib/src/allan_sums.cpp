@@ -19,10 +19,12 @@
 #include "allan_sums.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <future>
 #include <span>
+#include <system_error>
 #include <vector>
 
 #include "allan_dd.hpp"
@@ -62,6 +64,40 @@ SIGMATAU_AVX2_CLONES void fill_d2(const double* h, const double* l, std::int64_t
   }
 }
 
+/// out[t] = D2(n0 + t) from the compact phase: ((o2 + o0) - 2 o1) + c, c the base part.
+SIGMATAU_AVX2_CLONES void fill_d2_compact(const double* o, std::int64_t m, std::int64_t n0,
+                                          std::int64_t len, double c, double* out) {
+  const double* o0 = o + n0;
+  const double* o1 = o0 + m;
+  const double* o2 = o1 + m;
+  for (std::int64_t i = 0; i < len; ++i) out[i] = ((o2[i] + o0[i]) - 2.0 * o1[i]) + c;
+}
+
+/// Where the modified sums' D2 come from. Factors from kCompactBlock that are multiples of
+/// kBlock read the compact phase (one double a point: half the memory traffic, which is what
+/// bounds the far-apart points of large factors): every fill of the modified sums covers start
+/// points within one aligned run of kBlock, so for such m the points n, n + m and n + 2m of a
+/// fill each stay in one base block and the base part is one constant per fill. D2(n) is then
+/// the same value whichever fill computes it (as lead or as trail), so V still telescopes
+/// exactly. Smaller factors read the double-double phase: their D2 can be smaller than the
+/// phase excursion within a base block, which bounds the offsets' accuracy (as in the sweep).
+struct D2Source {
+  const double* h = nullptr;
+  const double* l = nullptr;
+  const CompactPhase* compact = nullptr;
+
+  static bool compact_suits(std::int64_t m) { return m >= kCompactBlock && m % kBlock == 0; }
+
+  void fill(std::int64_t m, std::int64_t n0, std::int64_t len, double* out) const {
+    if (compact != nullptr && compact_suits(m)) {
+      SIGMATAU_ASSERT(n0 % kBlock + len <= kBlock, "a compact fill stays in one aligned run");
+      fill_d2_compact(compact->offset.data(), m, n0, len, compact_base_d2(*compact, n0, m), out);
+    } else {
+      fill_d2(h, l, m, n0, len, out);
+    }
+  }
+};
+
 }  // namespace
 
 double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::int64_t count) {
@@ -95,12 +131,13 @@ struct ModifiedState {
   DoubleDouble total;
 };
 
-/// V(0) = sum of D2(0..m-1), accurately; `buffer` holds kBlock doubles.
-ModifiedState modified_start(const double* h, const double* l, std::int64_t m, double* buffer) {
+/// V(j0) = sum of D2(j0..j0+m-1), accurately; `buffer` holds kBlock doubles.
+ModifiedState modified_start(const D2Source& phase, std::int64_t m, std::int64_t j0,
+                             double* buffer) {
   DoubleDouble v0;
   for (std::int64_t i0 = 0; i0 < m; i0 += kBlock) {
     const std::int64_t len = std::min(kBlock, m - i0);
-    fill_d2(h, l, m, i0, len, buffer);
+    phase.fill(m, j0 + i0, len, buffer);
     double acc[kLanes] = {};
     for (std::int64_t t = 0; t < len; ++t) acc[t % kLanes] += buffer[t];
     v0.add(lane_total(acc));
@@ -108,23 +145,24 @@ ModifiedState modified_start(const double* h, const double* l, std::int64_t m, d
   return {v0.hi, v0.lo, {}};
 }
 
-/// The blocks of one factor's modified sum from start point j_begin (a multiple of kBlock) to
-/// the end, one factor at a time; returns the sum. `lead`, `trail` hold kBlock doubles.
-double modified_finish(const double* h, const double* l, std::int64_t m, std::int64_t count,
-                       ModifiedState state, std::int64_t j_begin, double* lead, double* trail) {
+/// The blocks of one factor's modified sum from start point j_begin (a multiple of kBlock) up
+/// to j_end (a multiple of kBlock, or count), one factor at a time, added to state.total.
+/// `lead`, `trail` hold kBlock doubles.
+void modified_finish(const D2Source& phase, std::int64_t m, std::int64_t count,
+                     ModifiedState& state, std::int64_t j_begin, std::int64_t j_end,
+                     double* lead, double* trail) {
   // V(j+1) = V(j) + D2(j+m) - D2(j): each of the two additions is error-free transformed (the
   // running value is s + c), so V carries no drift however long the series; (s, c) is
   // renormalised after every block.
   double s = state.s;
   double c = state.c;
-  DoubleDouble total = state.total;
   const std::int64_t transitions = count - 1;  // D2(j+m) exists for j <= count - 2
-  for (std::int64_t j0 = j_begin; j0 < count; j0 += kBlock) {
-    const std::int64_t len = std::min(kBlock, count - j0);
+  for (std::int64_t j0 = j_begin; j0 < j_end; j0 += kBlock) {
+    const std::int64_t len = std::min(kBlock, j_end - j0);
     const std::int64_t steps = std::min(len, transitions - j0);
     if (steps > 0) {
-      fill_d2(h, l, m, j0 + m, steps, lead);
-      fill_d2(h, l, m, j0, steps, trail);
+      phase.fill(m, j0 + m, steps, lead);
+      phase.fill(m, j0, steps, trail);
     }
     double acc[kLanes] = {};
     for (std::int64_t t = 0; t < len; ++t) {
@@ -140,9 +178,10 @@ double modified_finish(const double* h, const double* l, std::int64_t m, std::in
     const SumAndError r = two_sum(s, c);
     s = r.sum;
     c = r.err;
-    total.add(lane_total(acc));
+    state.total.add(lane_total(acc));
   }
-  return total.value();
+  state.s = s;
+  state.c = c;
 }
 
 /// Factors run in lock step by modified_sums: one per lane of a vector of kLanes doubles
@@ -153,7 +192,7 @@ using Lanes = double __attribute__((vector_size(kFactorLanes * sizeof(double))))
 
 /// Steps per lock-step chunk: the interleaved D2 buffers of a chunk (2 x kChunk x kFactorLanes
 /// doubles, 16 KiB) stay in the first-level cache between their filling and their use.
-constexpr std::int64_t kChunk = 128;
+constexpr std::int64_t kChunk = 256;
 static_assert(kBlock % kChunk == 0 && kChunk % kLanes == 0, "blocks are made of chunks");
 
 /// Rows row[g * kChunk + t] (factor g, step t) at steps t..t+kFactorLanes-1 as kFactorLanes
@@ -240,58 +279,78 @@ void modified_block_end(LockStep& state, double* block_total) {
 
 namespace {
 
-/// modified_sums for the factors m (at most kFactorLanes, ascending), into sums.
-void modified_group(const double* h, const double* l, std::span<const std::int64_t> m,
-                    std::span<const std::int64_t> counts, std::span<double> sums) {
+/// Each factor's start points are cut in two pieces at a block boundary that depends on the
+/// series' length and the factor's term count alone (not on the threads or on the other
+/// factors), so that two threads can share even a single factor: piece 0 is [0, split), piece 1
+/// is [split, count), and piece 1 starts from V(split) computed afresh. The factor's sum is the
+/// two pieces' totals added. The cut is at the same point (the middle of the series) for every
+/// factor that reaches it, so the factors of a group still read shared phase points in piece 1
+/// (n + 2m of factor m is n + m' of factor m' = 2m).
+std::int64_t modified_split(std::int64_t points, std::int64_t count) {
+  return std::min(points / 2, count - 1) / kBlock * kBlock;
+}
+
+/// One piece (0 or 1) of modified_sums for the factors m (at most kFactorLanes, ascending): the
+/// piece's sum of V^2 of each factor, into totals.
+void modified_piece(const D2Source& phase, std::int64_t points, std::span<const std::int64_t> m,
+                    std::span<const std::int64_t> counts, int piece,
+                    std::span<DoubleDouble> totals) {
   // modified_start and modified_finish use kBlock doubles of lead and trail; the lock step one
   // row of kChunk per factor of each.
   std::vector<double> lead(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
   std::vector<double> trail(static_cast<std::size_t>(std::max(kBlock, kChunk * kFactorLanes)));
-  {
-    const std::size_t G = m.size();
-    SIGMATAU_ASSERT(G <= kFactorLanes, "a group has at most kFactorLanes factors");
-    ModifiedState state[kFactorLanes];
-    std::int64_t full[kFactorLanes] = {};  // blocks with kBlock steps, done in lock step
-    std::int64_t most = 0;
-    LockStep lanes{};
-    double block_total[kFactorLanes];
-    for (std::size_t g = 0; g < G; ++g) {
-      state[g] = modified_start(h, l, m[g], lead.data());
-      lanes.s[g] = state[g].s;
-      lanes.c[g] = state[g].c;
-      // Block b has kBlock steps when (b + 1) kBlock <= count - 1 (modified_finish's steps).
-      full[g] = G > 1 ? (counts[g] - 1) / kBlock : 0;
-      most = std::max(most, full[g]);
-    }
-    // A finished factor's lane idles on zeros (and is not read again).
-    std::fill(lead.begin(), lead.end(), 0.0);
-    std::fill(trail.begin(), trail.end(), 0.0);
-    for (std::int64_t b = 0; b < most; ++b) {
-      for (std::int64_t j = b * kBlock; j < (b + 1) * kBlock; j += kChunk) {
-        for (std::size_t g = 0; g < G; ++g) {
-          if (b >= full[g]) continue;
-          const std::int64_t mg = m[g];
-          fill_d2(h, l, mg, j + mg, kChunk, lead.data() + g * kChunk);
-          fill_d2(h, l, mg, j, kChunk, trail.data() + g * kChunk);
-        }
-        modified_chunk_lanes(lead.data(), trail.data(), lanes);
-      }
-      modified_block_end(lanes, block_total);
+  const std::size_t G = m.size();
+  SIGMATAU_ASSERT(G <= kFactorLanes, "a group has at most kFactorLanes factors");
+  ModifiedState state[kFactorLanes];
+  std::int64_t first[kFactorLanes] = {};  // the piece's first block
+  std::int64_t locked[kFactorLanes] = {};  // its blocks with kBlock steps, done in lock step
+  std::int64_t end[kFactorLanes] = {};     // the piece's end (start point)
+  std::int64_t most = 0;
+  LockStep lanes{};
+  double block_total[kFactorLanes];
+  for (std::size_t g = 0; g < G; ++g) {
+    const std::int64_t split = modified_split(points, counts[g]);
+    const std::int64_t begin = piece == 0 ? 0 : split;
+    end[g] = piece == 0 ? split : counts[g];
+    first[g] = begin / kBlock;
+    // Block b has kBlock steps when (b + 1) kBlock <= count - 1 (modified_finish's steps).
+    const std::int64_t full = G > 1 ? (counts[g] - 1) / kBlock : 0;
+    locked[g] = std::max<std::int64_t>(0, std::min(full, end[g] / kBlock) - first[g]);
+    most = std::max(most, locked[g]);
+    state[g] = begin < end[g] ? modified_start(phase, m[g], begin, lead.data()) : ModifiedState{};
+    lanes.s[g] = state[g].s;
+    lanes.c[g] = state[g].c;
+  }
+  // A finished factor's lane idles on zeros (and is not read again).
+  std::fill(lead.begin(), lead.end(), 0.0);
+  std::fill(trail.begin(), trail.end(), 0.0);
+  for (std::int64_t b = 0; b < most; ++b) {
+    for (std::int64_t t = 0; t < kBlock; t += kChunk) {
       for (std::size_t g = 0; g < G; ++g) {
-        if (b >= full[g]) continue;
-        state[g].s = lanes.s[g];
-        state[g].c = lanes.c[g];
-        state[g].total.add(block_total[g]);
-        if (b + 1 == full[g]) {
-          std::fill_n(lead.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
-          std::fill_n(trail.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
-        }
+        if (b >= locked[g]) continue;
+        const std::int64_t mg = m[g];
+        const std::int64_t j = (first[g] + b) * kBlock + t;
+        phase.fill(mg, j + mg, kChunk, lead.data() + g * kChunk);
+        phase.fill(mg, j, kChunk, trail.data() + g * kChunk);
+      }
+      modified_chunk_lanes(lead.data(), trail.data(), lanes);
+    }
+    modified_block_end(lanes, block_total);
+    for (std::size_t g = 0; g < G; ++g) {
+      if (b >= locked[g]) continue;
+      state[g].s = lanes.s[g];
+      state[g].c = lanes.c[g];
+      state[g].total.add(block_total[g]);
+      if (b + 1 == locked[g]) {
+        std::fill_n(lead.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
+        std::fill_n(trail.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
       }
     }
-    for (std::size_t g = 0; g < G; ++g) {
-      sums[g] = modified_finish(h, l, m[g], counts[g], state[g], full[g] * kBlock,
-                                     lead.data(), trail.data());
-    }
+  }
+  for (std::size_t g = 0; g < G; ++g) {
+    modified_finish(phase, m[g], counts[g], state[g], (first[g] + locked[g]) * kBlock, end[g],
+                    lead.data(), trail.data());
+    totals[g] = state[g].total;
   }
 }
 
@@ -300,34 +359,48 @@ void modified_group(const double* h, const double* l, std::span<const std::int64
 std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
                                   std::span<const std::int64_t> counts, unsigned threads) {
   SIGMATAU_ASSERT(m.size() == counts.size(), "one count per factor");
-  const double* h = series.hi().data();
-  const double* l = series.lo().data();
-  std::vector<double> sums(m.size(), 0.0);
+  D2Source phase{series.hi().data(), series.lo().data(), nullptr};
+  std::shared_ptr<const CompactPhase> compact;
+  if (std::any_of(m.begin(), m.end(), D2Source::compact_suits)) {
+    compact = compact_phase(series);
+    phase.compact = compact.get();
+  }
   // Groups of near-equal size, at most kFactorLanes factors, consecutive in the order given
-  // (ascending factors have similar term counts, so few lanes idle); with threads, a multiple
-  // of their number, so each thread gets about the same number of factors.
-  const std::size_t workers = std::max(1u, threads);
-  std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
-  if (workers > 1) groups = std::min(m.size(), (groups + workers - 1) / workers * workers);
-  auto run = [&](std::size_t k) {
-    const std::size_t a = m.size() * k / groups;
-    const std::size_t b = m.size() * (k + 1) / groups;
-    modified_group(h, l, m.subspan(a, b - a), counts.subspan(a, b - a),
-                   std::span(sums).subspan(a, b - a));
+  // (ascending factors have similar term counts, so few lanes idle); each group's two pieces
+  // are tasks that threads take in turn, the group of the largest factors first (the factors
+  // whose phase points lie far apart take the longest per term).
+  const std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
+  std::vector<DoubleDouble> piece_totals[2];
+  for (auto& p : piece_totals) p.resize(m.size());
+  const std::size_t tasks = 2 * groups;
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t task = next++; task < tasks; task = next++) {
+      const std::size_t k = groups - 1 - task / 2;
+      const int piece = static_cast<int>(task % 2);
+      const std::size_t a = m.size() * k / groups;
+      const std::size_t b = m.size() * (k + 1) / groups;
+      modified_piece(phase, series.size(), m.subspan(a, b - a), counts.subspan(a, b - a), piece,
+                     std::span(piece_totals[piece]).subspan(a, b - a));
+    }
   };
-  if (workers == 1 || groups < 2) {
-    for (std::size_t k = 0; k < groups; ++k) run(k);
-    return sums;
-  }
-  // Group k on thread k mod workers; the first share on this thread.
+  const std::size_t workers = std::min<std::size_t>(std::max(1u, threads), tasks);
   std::vector<std::future<void>> others;
-  for (std::size_t w = 1; w < std::min(workers, groups); ++w) {
-    others.push_back(std::async(std::launch::async, [&run, w, workers, groups] {
-      for (std::size_t k = w; k < groups; k += workers) run(k);
-    }));
+  for (std::size_t w = 1; w < workers; ++w) {
+    try {
+      others.push_back(std::async(std::launch::async, work));
+    } catch (const std::system_error&) {
+      break;  // no thread to be had: this one does the rest
+    }
   }
-  for (std::size_t k = 0; k < groups; k += workers) run(k);
+  work();
   for (auto& f : others) f.get();
+  std::vector<double> sums(m.size(), 0.0);
+  for (std::size_t t = 0; t < m.size(); ++t) {
+    DoubleDouble total = piece_totals[0][t];
+    total.add(piece_totals[1][t].hi, piece_totals[1][t].lo);
+    sums[t] = total.value();
+  }
   return sums;
 }
 

@@ -23,6 +23,9 @@
 
 namespace sigmatau::detail {
 
+/// Points per base block of the compact phase.
+inline constexpr std::int64_t kCompactBlock = 4096;
+
 /// The phase in the form the overlapping sweep reads: one double per point measured from a base
 /// point per block of kCompactBlock points, x[k] = base[k / kCompactBlock] + offset[k], with the
 /// bases in double-double. Half the memory traffic of the double-double phase, and a difference
@@ -37,6 +40,10 @@ struct CompactPhase {
   DoubleBuffer offset;
   std::vector<DoubleDouble> base;
 };
+
+/// The base part (B2 - B1) - (B1 - B0) of D2(n) for lag m, rounded once: D2(n) is
+/// ((o[n+2m] + o[n]) - 2 o[n+m]) + this, with B_j the base of the block of n + j m.
+double compact_base_d2(const CompactPhase& phase, std::int64_t n, std::int64_t m);
 
 /// The series' compact phase, built on first use and kept with the series (shared by every
 /// statistic, factor and call, and by copies of the series) until drop_sweep_cache().
@@ -64,7 +71,8 @@ double sum_squares(const double* h, const double* l, int order, std::int64_t m, 
 double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::int64_t count);
 
 /// For each m (counts[t] >= 1 terms), sum_{j < counts[t]} V(j)^2 (MDEV, TDEV), V carried by a
-/// compensated running sum. Up to eight factors run at once, one per vector lane (each factor's
+/// compensated running sum. Factors from 4096 that are multiples of 1024 form their D2 from the
+/// compact phase (as the overlapping sweep does), the others from the double-double phase. Up to eight factors run at once, one per vector lane (each factor's
 /// running sum is a serial chain of additions, so several chains keep the floating-point units
 /// busy); every factor's result is the same bit for bit as when it is computed alone. With
 /// threads > 1 the groups of factors are shared among that many threads (same results).

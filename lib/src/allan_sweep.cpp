@@ -50,7 +50,7 @@ static_assert(kChainGroup2 <= kFusedMax && kChainGroup3 <= kFusedMax, "groups fi
 /// Points per base block of the compact phase (CompactPhase): offsets are measured from a base
 /// point at most this far back, so they hold the phase excursion over at most 4096 samples and
 /// are accurate to ~1 ulp of it. A divisor of kSweepBlock.
-constexpr std::int64_t kBaseBlock = 4096;
+constexpr std::int64_t kBaseBlock = kCompactBlock;
 static_assert(kSweepBlock % kBaseBlock == 0 && kBaseBlock % kTermBlock == 0,
               "sweep blocks are made of base blocks, base blocks of term blocks");
 /// Factors from which the compact phase is used. Below, the in-block excursion of the phase that
@@ -375,6 +375,11 @@ CompactPhase::CompactPhase(const PhaseSeries& series, std::vector<double> memory
     split_block(h + k0, l + k0, std::min(kBaseBlock, N - k0), h[k0], l[k0],
                 offset.data() + k0);
   }
+}
+
+double compact_base_d2(const CompactPhase& phase, std::int64_t n, std::int64_t m) {
+  const std::int64_t b[3] = {n / kBaseBlock, (n + m) / kBaseBlock, (n + 2 * m) / kBaseBlock};
+  return base_difference(phase.base, b, 2);
 }
 
 std::shared_ptr<const CompactPhase> compact_phase(const PhaseSeries& series) {
