@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <string>
 
 #include "allan_sums.hpp"
@@ -68,6 +69,43 @@ std::int64_t term_count(Statistic statistic, std::int64_t m, std::int64_t n_phas
   return std::max<std::int64_t>(n, 0);
 }
 
+namespace {
+
+/// The OADEV sums of the factors (ascending, each with OADEV terms): those already computed on
+/// this series are taken from its store, the others swept and kept there. TOTDEV's interior
+/// terms are exactly the OADEV terms, so a curve of each shares one sweep; the sums of a factor
+/// do not depend on the other factors swept with it or on the threads (bit for bit).
+std::vector<double> allan_sums(const PhaseSeries& series, std::span<const std::int64_t> factors,
+                               unsigned threads) {
+  detail::PhaseStore& store = series.store();
+  std::vector<double> sums(factors.size(), 0.0);
+  std::vector<std::int64_t> missing, counts;
+  {
+    std::lock_guard lock(store.mutex);
+    for (std::size_t t = 0; t < factors.size(); ++t) {
+      const auto known = store.allan_sums.find(factors[t]);
+      if (known != store.allan_sums.end()) {
+        sums[t] = known->second;
+      } else {
+        missing.push_back(factors[t]);
+        counts.push_back(term_count(Statistic::oadev, factors[t], series.size()));
+      }
+    }
+  }
+  if (missing.empty()) return sums;
+  const std::vector<double> swept = detail::overlapping_sums(series, 2, missing, counts, threads);
+  std::lock_guard lock(store.mutex);
+  for (std::size_t t = 0, k = 0; t < factors.size() && k < missing.size(); ++t) {
+    if (factors[t] != missing[k]) continue;
+    sums[t] = swept[k];
+    store.allan_sums.emplace(missing[k], swept[k]);
+    ++k;
+  }
+  return sums;
+}
+
+}  // namespace
+
 std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statistic statistic,
                                               std::span<const std::int64_t> m, unsigned threads) {
   for (const std::int64_t factor : m) {
@@ -89,16 +127,14 @@ std::vector<DeviationPoint> compute_deviation(const PhaseSeries& series, Statist
   std::vector<double> sums(factors.size(), 0.0);
   switch (statistic) {
     case Statistic::oadev:
-      sums = detail::overlapping_sums(series, 2, factors, counts, threads);
+      sums = allan_sums(series, factors, threads);
       break;
     case Statistic::ohdev:
       sums = detail::overlapping_sums(series, 3, factors, counts, threads);
       break;
     case Statistic::totdev: {
       // The interior N-2m terms are the OADEV terms; the 2(m-1) others reach past an end.
-      std::vector<std::int64_t> interior;
-      for (const std::int64_t factor : factors) interior.push_back(term_count(Statistic::oadev, factor, N));
-      sums = detail::overlapping_sums(series, 2, factors, interior, threads);
+      sums = allan_sums(series, factors, threads);
       for (std::size_t t = 0; t < factors.size(); ++t) {
         sums[t] += detail::total_boundary_sum(series, factors[t]);
       }

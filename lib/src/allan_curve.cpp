@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 #include <string>
@@ -142,41 +144,63 @@ AllanCurve assemble_allan_curve(const PhaseSeries& series, Statistic statistic,
 
 namespace {
 
-/// compute_allan_curve; with `beside`, the one-pass identification of the smallest factors runs
-/// on a thread of its own while this one sweeps the deviations (both only read the phase; the
-/// identification is wanted from the first confidence interval on, after the sweep), and the
-/// MDEV / TDEV sums take a second thread too (the identification is the shorter of the two).
+/// The one-pass identification (acf_first_steps) of a channel's smallest factors, shared by
+/// every statistic of the channel (the pass depends on the phase and the factor alone: the same
+/// alpha, bit for bit, whichever statistic asks). It runs once, when a curve first asks for it
+/// (after its sweep), or from the start on a thread of its own (`beside`).
+class FirstSteps {
+ public:
+  /// The factors of every statistic in `statistics` at these taus (none when no interval is
+  /// wanted).
+  FirstSteps(const PhaseSeries& series, std::span<const Statistic> statistics, const TauSpec& taus,
+             double confidence_level, bool beside)
+      : series_(series) {
+    if (confidence_level > 0.0 && confidence_level < 1.0) {
+      for (const Statistic statistic : statistics) {
+        const auto m = averaging_factors(taus, statistic, series.size(), series.tau0_s(),
+                                         series.kind());
+        factors_.insert(factors_.end(), m.begin(), m.end());
+      }
+    }
+    std::sort(factors_.begin(), factors_.end());
+    factors_.erase(std::unique(factors_.begin(), factors_.end()), factors_.end());
+    if (factors_.size() > kFirstStepFactors) factors_.resize(kFirstStepFactors);
+    if (beside && !factors_.empty()) {
+      pending_ = std::async(std::launch::async, [this] { return detail::acf_first_steps(series_, factors_); });
+    }
+  }
+
+  /// The pass's result for m: nullopt when m is not among its factors or the pass cannot tell
+  /// (the caller then builds m's averaged series). Thread-safe.
+  std::optional<int> find(std::int64_t m) {
+    std::call_once(once_, [this] {
+      steps_ = pending_.valid() ? pending_.get() : detail::acf_first_steps(series_, factors_);
+    });
+    const auto known = std::lower_bound(factors_.begin(), factors_.end(), m);
+    if (known == factors_.end() || *known != m) return std::nullopt;
+    return steps_[static_cast<std::size_t>(known - factors_.begin())];
+  }
+
+ private:
+  const PhaseSeries& series_;
+  std::vector<std::int64_t> factors_;
+  std::vector<std::optional<int>> steps_;
+  std::once_flag once_;
+  std::future<std::vector<std::optional<int>>> pending_;  // last: joined before the rest goes
+};
+
+/// compute_allan_curve, the sums on up to sweep_threads threads.
 AllanCurve allan_curve(const PhaseSeries& series, Statistic statistic, const TauSpec& taus,
-                       double confidence_level, EdfModel edf_model, bool beside) {
+                       double confidence_level, EdfModel edf_model, FirstSteps& first_steps,
+                       unsigned sweep_threads) {
   // One buffer for the averaged series of every tau (sized by the first, smallest m): fresh
   // pages per tau cost more in kernel zeroing than the identification itself.
   std::unique_ptr<double[]> scratch;
   std::int64_t capacity = 0;
-  // The smallest factors' identification (the costly ones: their series are long) is told by
-  // one pass over the phase for all of them (acf_first_steps: the same alpha, bit for bit)
-  // where it can; the others build their averaged series.
-  std::vector<std::int64_t> factors;
-  if (confidence_level > 0.0 && confidence_level < 1.0) {
-    factors = averaging_factors(taus, statistic, series.size(), series.tau0_s(), series.kind());
-  }
-  std::sort(factors.begin(), factors.end());
-  factors.erase(std::unique(factors.begin(), factors.end()), factors.end());
-  if (factors.size() > kFirstStepFactors) factors.resize(kFirstStepFactors);
-  std::vector<std::optional<int>> first_steps;
-  std::future<std::vector<std::optional<int>>> pending;  // joined before factors goes
-  if (beside && !factors.empty()) {
-    pending = std::async(std::launch::async,
-                         [&series, &factors] { return detail::acf_first_steps(series, factors); });
-  } else {
-    first_steps = detail::acf_first_steps(series, factors);
-  }
   return detail::assemble_allan_curve(
       series, statistic, taus, confidence_level, edf_model, [&](std::int64_t m) {
-        if (pending.valid()) first_steps = pending.get();
-        const auto known = std::lower_bound(factors.begin(), factors.end(), m);
-        if (known != factors.end() && *known == m) {
-          const auto& alpha = first_steps[static_cast<std::size_t>(known - factors.begin())];
-          if (alpha) return detail::acf_identification(*alpha, statistic);
+        if (const std::optional<int> alpha = first_steps.find(m)) {
+          return detail::acf_identification(*alpha, statistic);
         }
         const std::int64_t points = detail::averaged_series_points(series, m);
         if (points >= detail::kMinAcfPoints && points > capacity) {
@@ -185,14 +209,15 @@ AllanCurve allan_curve(const PhaseSeries& series, Statistic statistic, const Tau
         }
         return detail::identify_noise_with(series, statistic, m, scratch.get());
       },
-      beside ? 2u : 1u);
+      sweep_threads);
 }
 
 }  // namespace
 
 AllanCurve compute_allan_curve(const PhaseSeries& series, Statistic statistic,
                                const TauSpec& taus, double confidence_level, EdfModel edf_model) {
-  return allan_curve(series, statistic, taus, confidence_level, edf_model, false);
+  FirstSteps first_steps(series, std::span(&statistic, 1), taus, confidence_level, false);
+  return allan_curve(series, statistic, taus, confidence_level, edf_model, first_steps, 1);
 }
 
 std::vector<std::vector<AllanCurve>> compute_allan_curves(
@@ -202,9 +227,20 @@ std::vector<std::vector<AllanCurve>> compute_allan_curves(
   const unsigned workers =
       threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
   const bool beside = channels.size() * statistics.size() < workers;
+  // With fewer channels than threads, each curve's sums take a second thread: the identification
+  // pass runs beside them (beside), or the statistics of a channel take unequal times (MDEV's
+  // sums several times OADEV's), and a thread that has finished its curves can share the
+  // longest sums instead of waiting.
+  const unsigned sweep_threads = channels.size() < workers ? 2u : 1u;
+  std::vector<std::unique_ptr<FirstSteps>> first_steps;
+  for (const PhaseSeries& channel : channels) {
+    first_steps.push_back(std::make_unique<FirstSteps>(channel, statistics, taus,
+                                                       confidence_level, beside));
+  }
   return detail::curves_per_channel_and_statistic(
       channels.size(), statistics.size(), threads, [&](std::size_t c, std::size_t s) {
-        return allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model, beside);
+        return allan_curve(channels[c], statistics[s], taus, confidence_level, edf_model,
+                           *first_steps[c], sweep_threads);
       });
 }
 

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <future>
@@ -131,13 +132,25 @@ struct ModifiedState {
   DoubleDouble total;
 };
 
-/// V(j0) = sum of D2(j0..j0+m-1), accurately; `buffer` holds kBlock doubles.
+/// ring[(n mod ring.size())] = D2(n) for the n in [n0, n0 + len); the ring's size is a power of
+/// two at least len.
+void put_in_ring(std::span<double> ring, std::int64_t n0, std::int64_t len, const double* d2) {
+  const auto size = static_cast<std::int64_t>(ring.size());
+  const std::int64_t at = n0 & (size - 1);
+  const std::int64_t first = std::min(len, size - at);
+  std::copy_n(d2, first, ring.begin() + at);
+  std::copy_n(d2 + first, len - first, ring.begin());
+}
+
+/// V(j0) = sum of D2(j0..j0+m-1), accurately; `buffer` holds kBlock doubles. With a ring, the
+/// D2 also go into it (put_in_ring).
 ModifiedState modified_start(const D2Source& phase, std::int64_t m, std::int64_t j0,
-                             double* buffer) {
+                             double* buffer, std::span<double> ring = {}) {
   DoubleDouble v0;
   for (std::int64_t i0 = 0; i0 < m; i0 += kBlock) {
     const std::int64_t len = std::min(kBlock, m - i0);
     phase.fill(m, j0 + i0, len, buffer);
+    if (!ring.empty()) put_in_ring(ring, j0 + i0, len, buffer);
     double acc[kLanes] = {};
     for (std::int64_t t = 0; t < len; ++t) acc[t % kLanes] += buffer[t];
     v0.add(lane_total(acc));
@@ -190,18 +203,23 @@ void modified_finish(const D2Source& phase, std::int64_t m, std::int64_t count,
 constexpr int kFactorLanes = kLanes;
 using Lanes = double __attribute__((vector_size(kFactorLanes * sizeof(double))));
 
-/// Steps per lock-step chunk: the interleaved D2 buffers of a chunk (2 x kChunk x kFactorLanes
-/// doubles, 16 KiB) stay in the first-level cache between their filling and their use.
+/// Steps per lock-step chunk: the D2 rows of a chunk (2 x kChunk x kFactorLanes doubles,
+/// 32 KiB) stay in the first-level cache between their filling and their use.
 constexpr std::int64_t kChunk = 256;
+/// Factors up to this keep their D2 in a ring (modified_piece): at most 8 x 32 KiB.
+constexpr std::int64_t kRingMost = 2048;
 static_assert(kBlock % kChunk == 0 && kChunk % kLanes == 0, "blocks are made of chunks");
 
-/// Rows row[g * kChunk + t] (factor g, step t) at steps t..t+kFactorLanes-1 as kFactorLanes
-/// vectors, vector k holding step t + k of every factor: an 8 x 8 transpose in three rounds of
-/// shuffles (pairs, then quads, then halves), data movement only.
-[[gnu::always_inline]] inline void transpose_rows(const double* row, std::int64_t t, Lanes (&out)[kFactorLanes]) {
+/// One row of kChunk D2 values per factor.
+using Rows = const double* [kFactorLanes];
+
+/// Rows row[g][t] (factor g, step t) at steps t..t+kFactorLanes-1 as kFactorLanes vectors,
+/// vector k holding step t + k of every factor: an 8 x 8 transpose in three rounds of shuffles
+/// (pairs, then quads, then halves), data movement only.
+[[gnu::always_inline]] inline void transpose_rows(const Rows& row, std::int64_t t, Lanes (&out)[kFactorLanes]) {
   static_assert(kFactorLanes == 8, "the shuffles are written for 8 x 8");
   Lanes r[8];
-  for (int g = 0; g < 8; ++g) __builtin_memcpy(&r[g], row + g * kChunk + t, sizeof(Lanes));
+  for (int g = 0; g < 8; ++g) __builtin_memcpy(&r[g], row[g] + t, sizeof(Lanes));
   Lanes p[8];
   for (int g = 0; g < 8; g += 2) {
     p[g] = __builtin_shufflevector(r[g], r[g + 1], 0, 8, 2, 10, 4, 12, 6, 14);
@@ -226,11 +244,11 @@ struct LockStep {
   Lanes acc[kLanes];
 };
 
-/// One chunk (kChunk steps) of modified_finish for kFactorLanes factors at once: lead and trail
-/// hold D2(j + m + t) and D2(j + t) of factor g at [g * kChunk + t] (one row per factor, as
-/// fill_d2 writes them; turned into one vector per step by transpose_rows). Steps within a
-/// block go to the block's lanes acc[t mod kLanes], as in modified_finish.
-SIGMATAU_SIMD_CLONES void modified_chunk_lanes(const double* lead, const double* trail,
+/// One chunk (kChunk steps) of modified_finish for kFactorLanes factors at once: lead[g] and
+/// trail[g] hold D2(j + m + t) and D2(j + t) of factor g at [t] (one row per factor, as the
+/// fills write them; turned into one vector per step by transpose_rows). Steps within a block
+/// go to the block's lanes acc[t mod kLanes], as in modified_finish.
+SIGMATAU_SIMD_CLONES void modified_chunk_lanes(const Rows& lead, const Rows& trail,
                                                 LockStep& state) {
   Lanes s = state.s;
   Lanes c = state.c;
@@ -308,6 +326,17 @@ void modified_piece(const D2Source& phase, std::int64_t points, std::span<const 
   std::int64_t most = 0;
   LockStep lanes{};
   double block_total[kFactorLanes];
+  // Small factors keep the D2 they compute as lead in a ring of the last >= m + kChunk values
+  // (a power of two, so a chunk's trail row, aligned to kChunk, is contiguous in it): their
+  // trail is then read, not computed again from the double-double phase. The ring starts with
+  // the D2 that modified_start sums. Large factors' rings would not stay in cache; they compute
+  // their trail row as they compute their lead row.
+  std::vector<double> rings[kFactorLanes];
+  for (std::size_t g = 0; g < G; ++g) {
+    if (m[g] <= kRingMost) {
+      rings[g].resize(std::bit_ceil(static_cast<std::uint64_t>(m[g] + kChunk)));
+    }
+  }
   for (std::size_t g = 0; g < G; ++g) {
     const std::int64_t split = modified_split(points, counts[g]);
     const std::int64_t begin = piece == 0 ? 0 : split;
@@ -317,23 +346,38 @@ void modified_piece(const D2Source& phase, std::int64_t points, std::span<const 
     const std::int64_t full = G > 1 ? (counts[g] - 1) / kBlock : 0;
     locked[g] = std::max<std::int64_t>(0, std::min(full, end[g] / kBlock) - first[g]);
     most = std::max(most, locked[g]);
-    state[g] = begin < end[g] ? modified_start(phase, m[g], begin, lead.data()) : ModifiedState{};
+    state[g] = begin < end[g] ? modified_start(phase, m[g], begin, lead.data(), rings[g])
+                              : ModifiedState{};
     lanes.s[g] = state[g].s;
     lanes.c[g] = state[g].c;
   }
-  // A finished factor's lane idles on zeros (and is not read again).
+  // A finished factor's lane (and an unused one) idles on zeros (and is not read again).
   std::fill(lead.begin(), lead.end(), 0.0);
   std::fill(trail.begin(), trail.end(), 0.0);
+  Rows lead_rows, trail_rows;
+  for (int g = 0; g < kFactorLanes; ++g) {
+    lead_rows[g] = lead.data() + g * kChunk;
+    trail_rows[g] = trail.data() + g * kChunk;
+  }
   for (std::int64_t b = 0; b < most; ++b) {
     for (std::int64_t t = 0; t < kBlock; t += kChunk) {
       for (std::size_t g = 0; g < G; ++g) {
         if (b >= locked[g]) continue;
         const std::int64_t mg = m[g];
         const std::int64_t j = (first[g] + b) * kBlock + t;
-        phase.fill(mg, j + mg, kChunk, lead.data() + g * kChunk);
-        phase.fill(mg, j, kChunk, trail.data() + g * kChunk);
+        double* lead_row = lead.data() + g * kChunk;
+        phase.fill(mg, j + mg, kChunk, lead_row);
+        if (rings[g].empty()) {
+          phase.fill(mg, j, kChunk, trail.data() + g * kChunk);
+        } else {
+          // D2(j..j+kChunk) went in as lead (or at the start) and are still there: the ring
+          // holds >= m + kChunk values, and those written since are D2(j+kChunk..j+m+kChunk).
+          put_in_ring(rings[g], j + mg, kChunk, lead_row);
+          const auto size = static_cast<std::int64_t>(rings[g].size());
+          trail_rows[g] = rings[g].data() + (j & (size - 1));
+        }
       }
-      modified_chunk_lanes(lead.data(), trail.data(), lanes);
+      modified_chunk_lanes(lead_rows, trail_rows, lanes);
     }
     modified_block_end(lanes, block_total);
     for (std::size_t g = 0; g < G; ++g) {
@@ -344,6 +388,7 @@ void modified_piece(const D2Source& phase, std::int64_t points, std::span<const 
       if (b + 1 == locked[g]) {
         std::fill_n(lead.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
         std::fill_n(trail.begin() + static_cast<std::ptrdiff_t>(g * kChunk), kChunk, 0.0);
+        trail_rows[g] = trail.data() + g * kChunk;
       }
     }
   }
@@ -365,8 +410,9 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
     compact = compact_phase(series);
     phase.compact = compact.get();
   }
-  // Groups of near-equal size, at most kFactorLanes factors, consecutive in the order given
-  // (ascending factors have similar term counts, so few lanes idle); each group's two pieces
+  // Groups of kFactorLanes factors (the last one fewer), consecutive in the order given
+  // (ascending factors have similar term counts, so few lanes idle; full groups leave no lane
+  // idle where the work is, among the many steps of the small factors); each group's two pieces
   // are tasks that threads take in turn, the group of the largest factors first (the factors
   // whose phase points lie far apart take the longest per term).
   const std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
@@ -378,8 +424,8 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
     for (std::size_t task = next++; task < tasks; task = next++) {
       const std::size_t k = groups - 1 - task / 2;
       const int piece = static_cast<int>(task % 2);
-      const std::size_t a = m.size() * k / groups;
-      const std::size_t b = m.size() * (k + 1) / groups;
+      const std::size_t a = k * kFactorLanes;
+      const std::size_t b = std::min(m.size(), a + kFactorLanes);
       modified_piece(phase, series.size(), m.subspan(a, b - a), counts.subspan(a, b - a), piece,
                      std::span(piece_totals[piece]).subspan(a, b - a));
     }

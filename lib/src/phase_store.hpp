@@ -4,6 +4,7 @@
 // kept, so that repeated estimates (several statistics, several calls) do not rebuild them.
 
 #include <memory>
+#include <map>
 #include <mutex>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct PhaseStore {
   /// Memory handed back by the caller (PhaseSeries::recycle, under `mutex`): the sweep copy is
   /// built in it when it holds the series' points, instead of in fresh pages.
   std::vector<double> recycled;
+  /// The OADEV sums (squared second differences at every start point) by factor, under `mutex`:
+  /// computed once for the OADEV and TOTDEV curves of the series (allan.cpp).
+  std::map<std::int64_t, double> allan_sums;
 };
 
 }  // namespace sigmatau::detail
