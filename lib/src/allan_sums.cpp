@@ -297,19 +297,22 @@ void modified_block_end(LockStep& state, double* block_total) {
 
 namespace {
 
-/// Each factor's start points are cut in two pieces at a block boundary that depends on the
+/// Each factor's start points are cut in kPieces pieces at block boundaries that depend on the
 /// series' length and the factor's term count alone (not on the threads or on the other
-/// factors), so that two threads can share even a single factor: piece 0 is [0, split), piece 1
-/// is [split, count), and piece 1 starts from V(split) computed afresh. The factor's sum is the
-/// two pieces' totals added. The cut is at the same point (the middle of the series) for every
-/// factor that reaches it, so the factors of a group still read shared phase points in piece 1
-/// (n + 2m of factor m is n + m' of factor m' = 2m).
-std::int64_t modified_split(std::int64_t points, std::int64_t count) {
-  return std::min(points / 2, count - 1) / kBlock * kBlock;
+/// factors), so that threads can share even a single factor, and the last pieces to be taken
+/// are short: piece p is [cut(p), cut(p + 1)), and each piece starts from its V(cut(p))
+/// computed afresh. The factor's sum is the pieces' totals added in order. A cut is at the same
+/// point (p / kPieces of the series) for every factor that reaches it, so the factors of a group
+/// still read shared phase points in every piece (n + 2m of factor m is n + m' of m' = 2m).
+constexpr int kPieces = 4;
+std::int64_t modified_cut(std::int64_t points, std::int64_t count, int p) {
+  if (p == 0) return 0;
+  if (p == kPieces) return count;
+  return std::min(points / kPieces * p, count - 1) / kBlock * kBlock;
 }
 
-/// One piece (0 or 1) of modified_sums for the factors m (at most kFactorLanes, ascending): the
-/// piece's sum of V^2 of each factor, into totals.
+/// One piece (0 <= piece < kPieces) of modified_sums for the factors m (at most kFactorLanes,
+/// ascending): the piece's sum of V^2 of each factor, into totals.
 void modified_piece(const D2Source& phase, std::int64_t points, std::span<const std::int64_t> m,
                     std::span<const std::int64_t> counts, int piece,
                     std::span<DoubleDouble> totals) {
@@ -338,9 +341,8 @@ void modified_piece(const D2Source& phase, std::int64_t points, std::span<const 
     }
   }
   for (std::size_t g = 0; g < G; ++g) {
-    const std::int64_t split = modified_split(points, counts[g]);
-    const std::int64_t begin = piece == 0 ? 0 : split;
-    end[g] = piece == 0 ? split : counts[g];
+    const std::int64_t begin = modified_cut(points, counts[g], piece);
+    end[g] = modified_cut(points, counts[g], piece + 1);
     first[g] = begin / kBlock;
     // Block b has kBlock steps when (b + 1) kBlock <= count - 1 (modified_finish's steps).
     const std::int64_t full = G > 1 ? (counts[g] - 1) / kBlock : 0;
@@ -412,18 +414,18 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
   }
   // Groups of kFactorLanes factors (the last one fewer), consecutive in the order given
   // (ascending factors have similar term counts, so few lanes idle; full groups leave no lane
-  // idle where the work is, among the many steps of the small factors); each group's two pieces
+  // idle where the work is, among the many steps of the small factors); each group's pieces
   // are tasks that threads take in turn, the group of the largest factors first (the factors
   // whose phase points lie far apart take the longest per term).
   const std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
-  std::vector<DoubleDouble> piece_totals[2];
+  std::vector<DoubleDouble> piece_totals[kPieces];
   for (auto& p : piece_totals) p.resize(m.size());
-  const std::size_t tasks = 2 * groups;
+  const std::size_t tasks = kPieces * groups;
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t task = next++; task < tasks; task = next++) {
-      const std::size_t k = groups - 1 - task / 2;
-      const int piece = static_cast<int>(task % 2);
+      const std::size_t k = groups - 1 - task / kPieces;
+      const int piece = static_cast<int>(task % kPieces);
       const std::size_t a = k * kFactorLanes;
       const std::size_t b = std::min(m.size(), a + kFactorLanes);
       modified_piece(phase, series.size(), m.subspan(a, b - a), counts.subspan(a, b - a), piece,
@@ -444,7 +446,7 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
   std::vector<double> sums(m.size(), 0.0);
   for (std::size_t t = 0; t < m.size(); ++t) {
     DoubleDouble total = piece_totals[0][t];
-    total.add(piece_totals[1][t].hi, piece_totals[1][t].lo);
+    for (int p = 1; p < kPieces; ++p) total.add(piece_totals[p][t].hi, piece_totals[p][t].lo);
     sums[t] = total.value();
   }
   return sums;
