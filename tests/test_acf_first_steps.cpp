@@ -125,16 +125,22 @@ TEST_CASE("the one-pass ACF identification leaves constant series to the exact o
 
 TEST_CASE("curves with the identification pass on a spare thread equal the one-thread curves") {
   // compute_allan_curves runs acf_first_steps beside the sweep when there are fewer curves than
-  // threads: every point (deviation, alpha, method, EDF, interval) must equal the serial one's.
+  // threads, once per channel for all its statistics, and keeps the OADEV sums with the phase
+  // for TOTDEV's interior (either may come first): every point (deviation, alpha, method, EDF,
+  // interval) must equal that of the statistic computed alone on a series of its own (nothing
+  // shared with the other statistics).
   const auto y = white(200000, 77);
-  const PhaseSeries series = PhaseSeries::from_rate(y, 0.01);
-  const std::vector<Statistic> stats = {Statistic::oadev, Statistic::mdev};
+  const std::vector<Statistic> stats = {Statistic::oadev, Statistic::mdev, Statistic::totdev,
+                                        Statistic::ohdev};
   const TauSpec taus = parse_tau_spec("octave");
   for (const unsigned threads : {1u, 3u, 8u}) {
+    const PhaseSeries series = PhaseSeries::from_rate(y, 0.01);
     const auto curves = compute_allan_curves({series}, stats, taus, 0.683, threads);
     REQUIRE(curves.size() == 1);
     for (std::size_t s = 0; s < stats.size(); ++s) {
-      const AllanCurve serial = compute_allan_curve(series, stats[s], taus, 0.683);
+      INFO("threads " << threads << ", " << to_string(stats[s]));
+      const PhaseSeries alone = PhaseSeries::from_rate(y, 0.01);
+      const AllanCurve serial = compute_allan_curve(alone, stats[s], taus, 0.683);
       const AllanCurve& c = curves[0][s];
       REQUIRE(c.points.size() == serial.points.size());
       for (std::size_t i = 0; i < c.points.size(); ++i) {

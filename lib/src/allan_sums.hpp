@@ -72,10 +72,12 @@ double strided_sum(const PhaseSeries& series, int order, std::int64_t m, std::in
 
 /// For each m (counts[t] >= 1 terms), sum_{j < counts[t]} V(j)^2 (MDEV, TDEV), V carried by a
 /// compensated running sum. Factors from 4096 that are multiples of 1024 form their D2 from the
-/// compact phase (as the overlapping sweep does), the others from the double-double phase. Up to eight factors run at once, one per vector lane (each factor's
-/// running sum is a serial chain of additions, so several chains keep the floating-point units
-/// busy); every factor's result is the same bit for bit as when it is computed alone. With
-/// threads > 1 the groups of factors are shared among that many threads (same results).
+/// compact phase (as the overlapping sweep does), the others from the double-double phase.
+/// Up to eight factors run at once, one per vector lane (each factor's running sum is a serial
+/// chain of additions, so several chains keep the floating-point units busy), and each factor's
+/// start points are cut into four pieces at fixed points of the series; every factor's result is
+/// the same bit for bit as when it is computed alone, and with any number of threads (which
+/// take the pieces of the groups in turn).
 std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std::int64_t> m,
                                   std::span<const std::int64_t> counts, unsigned threads = 1);
 
