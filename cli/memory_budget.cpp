@@ -17,6 +17,8 @@ namespace {
 /// room for chunks compressed up to ~4x (lz4 and zstd do 2-3x on Imu messages), so a bag goes
 /// out of core early rather than overrunning --memory (out of core costs a second read pass).
 constexpr std::int64_t kBagBytesPerValue = 16;
+/// Values of one sensor_msgs/Imu message the reader can take (three rates, three accelerations).
+constexpr std::int64_t kImuValues = 6;
 /// Largest --memory accepted [bytes]: 2^60 (1024 PiB), beyond any machine and far enough below
 /// int64's 2^63 that the sums and products made from it cannot overflow.
 constexpr double kMaxMemoryBytes = 1152921504606846976.0;
@@ -62,7 +64,17 @@ std::int64_t estimated_values(const LogArguments& log, std::int64_t enough_value
   if (!std::filesystem::is_regular_file(log.input, ec)) return -1;
   auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(log.input, ec));
   if (ec) return -1;
-  if (is_bag_path(log.input)) return bytes / kBagBytesPerValue;
+  if (is_bag_path(log.input)) {
+    // The index's (or summary's) count when the bag states one (six values per Imu message),
+    // else an estimate from the size. A bag that cannot be opened is left to the reader's
+    // error.
+    try {
+      const std::int64_t messages = indexed_bag_messages(log.input, log.topic);
+      if (messages >= 0) return messages * kImuValues;
+    } catch (const Error&) {
+    }
+    return bytes / kBagBytesPerValue;
+  }
   const std::int64_t per_value = log.binary.empty() ? 4 : value_bytes(parse_binary_format(log.binary));
   // A gzip file holds what it inflates to (5-700x its size for text): counted, up to the
   // bytes that already make more than enough_values.

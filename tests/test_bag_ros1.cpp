@@ -196,6 +196,11 @@ TEST_CASE("without a topic the only sensor_msgs/Imu topic is read") {
     // Asked for by name, no listing.
     o.topic = "/imu/data";
     CHECK(read_log(o).timing.bag_topics.empty());
+    // The index's counts without reading a message (the memory estimate of the CLI); a bag
+    // without an index states none.
+    CHECK(indexed_bag_messages(path) == (indexed ? 200 : -1));
+    CHECK(indexed_bag_messages(path, "/tf") == (indexed ? 20 : -1));
+    CHECK(indexed_bag_messages(path, "/imu/raw") == -1);
   }
 }
 
@@ -227,6 +232,10 @@ TEST_CASE("two Imu topics without a topic is an error listing every topic with t
   const std::string absent = error_of(o);
   CHECK(absent.find("no topic /imu/c in the bag") != std::string::npos);
   CHECK(absent.find("/imu/a (sensor_msgs/Imu, 10 messages)") != std::string::npos);
+
+  // Two Imu topics: no count without a topic (the reader would ask which one).
+  CHECK(indexed_bag_messages(path) == -1);
+  CHECK(indexed_bag_messages(path, "/imu/b") == 10);
 
   const auto topics = list_bag_topics(path);
   REQUIRE(topics.size() == 3);

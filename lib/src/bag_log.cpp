@@ -383,4 +383,15 @@ std::vector<BagTopic> list_bag_topics(const std::string& path) {
   return detail::open_bag(path)->topics(true);
 }
 
+std::int64_t indexed_bag_messages(const std::string& path, const std::string& topic) {
+  const std::vector<BagTopic> listed = detail::open_bag(path)->indexed_topics();
+  const BagTopic* found = nullptr;
+  for (const BagTopic& t : listed) {
+    if (topic.empty() ? !detail::is_imu_type(t.type) : t.name != topic) continue;
+    if (found != nullptr) return -1;  // two Imu topics: the reader asks which one
+    found = &t;
+  }
+  return found != nullptr ? found->messages : -1;
+}
+
 }  // namespace sigmatau

@@ -130,6 +130,10 @@ class McapFile final : public BagBackend {
     return topic_list(counts_known_ || scanned_);
   }
 
+  std::vector<BagTopic> indexed_topics() override {
+    return has_summary_ ? topic_list(counts_known_) : std::vector<BagTopic>{};
+  }
+
   bool select(const std::string& topic) override {
     topic_ = topic;
     std::fill(selected_.begin(), selected_.end(), Encoding::unsupported);

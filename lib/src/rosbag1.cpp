@@ -144,6 +144,10 @@ class Ros1Bag final : public BagBackend {
     return topic_list(true);
   }
 
+  std::vector<BagTopic> indexed_topics() override {
+    return indexed_ ? topic_list(true) : std::vector<BagTopic>{};
+  }
+
   bool select(const std::string& topic) override {
     topic_ = topic;
     selected_.clear();

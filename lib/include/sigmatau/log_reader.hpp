@@ -157,6 +157,13 @@ bool is_bag_path(const std::string& path);
 /// when it has one, else by reading it through). Throws Error / ParseError like LogReader.
 std::vector<BagTopic> list_bag_topics(const std::string& path);
 
+/// The number of messages on `topic` (empty: the only sensor_msgs/Imu topic) as the bag's index
+/// (ROS 1) or summary (MCAP) states it, without reading any message: cheap at any size. -1 when
+/// the bag states none (unindexed, no summary or no counts in it; rosbag2 SQLite, whose count
+/// needs a query over every message) or has no such topic. Throws Error / ParseError like
+/// LogReader.
+std::int64_t indexed_bag_messages(const std::string& path, const std::string& topic = "");
+
 /// A block of rows, stored per channel: values[c][r].
 struct SampleBlock {
   std::vector<std::vector<double>> values;
