@@ -49,6 +49,9 @@ class BagLog {
   /// window allows, or a non-finite value under NonFinitePolicy::error.
   std::int64_t read_rows(SampleBlock& block, std::int64_t max_rows);
 
+  /// The topic's message count as the bag states it (its index or summary, or a counting scan
+  /// of a bag without one that has been made anyway); -1 when unknown.
+  std::int64_t messages_stated() const { return stated_; }
   std::int64_t reordered_samples() const { return reordered_; }
   double max_reorder_s() const { return static_cast<double>(max_reorder_ns_) / 1e9; }
   /// Where the recording was cut short (at_byte -1 when it was not, or not yet met); only

@@ -26,6 +26,9 @@ constexpr std::int64_t kMaxBufferBytes = std::int64_t{1} << 30;
 /// longer rows later on (more digits, a longer time stamp): reserved address space, of which
 /// only what is written becomes memory.
 constexpr double kRowEstimateMargin = 1.25;
+/// Fewest bytes of a bag per sensor_msgs/Imu message: its 37 doubles alone take 296, and no
+/// chunk compression of them reaches 9x.
+constexpr std::int64_t kMinBagMessageBytes = 32;
 /// Most rows reserved from an estimate (2^32, 32 GiB a channel): beyond, the arrays grow.
 constexpr std::int64_t kMaxReservedRows = std::int64_t{1} << 32;
 /// Rows added to that estimate, for a short last piece.
@@ -208,6 +211,15 @@ std::int64_t LogReader::total_bytes() const {
 std::int64_t LogReader::rows_left_hint() const {
   const Impl& m = *impl_;
   if (m.binary) return m.binary->records_left();
+  if (m.bag) {
+    // The rows a bag holds: its stated count of the topic's messages (each a row), an upper
+    // bound when some are skipped (non-finite values). A count no bag of this size could hold
+    // (a corrupt index) is no hint.
+    const std::int64_t stated = m.bag->messages_stated();
+    const std::int64_t most = std::min(kMaxReservedRows, m.bag->total_bytes() / kMinBagMessageBytes);
+    if (stated > most) return -1;
+    return stated > m.rows_delivered ? stated - m.rows_delivered : -1;
+  }
   if (!m.text || m.source->gzip() || m.rows_delivered == 0) return -1;
   const std::int64_t total = m.source->total_bytes();
   const std::int64_t done = m.source->bytes_consumed();

@@ -304,7 +304,9 @@ class LogReader {
   /// Rows still to read, for sizing arrays once: for a raw binary file (not gzip, not a pipe)
   /// its remaining size / record size, an upper bound (rows skipped as non-finite count); for a
   /// plain text file, once a block has been read, an estimate from the bytes per row so far
-  /// (with a 25 % margin); -1 for gzip, pipes, bags and a text file before its first block.
+  /// (with a 25 % margin); for a bag, the messages its index or summary states are left on the
+  /// topic; -1 for gzip, pipes, a bag that states no count and a text file before its first
+  /// block.
   std::int64_t rows_left_hint() const;
 
  private:
