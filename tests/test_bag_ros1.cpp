@@ -201,6 +201,11 @@ TEST_CASE("without a topic the only sensor_msgs/Imu topic is read") {
     CHECK(indexed_bag_messages(path) == (indexed ? 200 : -1));
     CHECK(indexed_bag_messages(path, "/tf") == (indexed ? 20 : -1));
     CHECK(indexed_bag_messages(path, "/imu/raw") == -1);
+    // The reader's row hint (its arrays are sized once from it): the stated count, before any
+    // block; an unindexed bag states none until it has been counted.
+    o.topic = "/imu/data";
+    LogReader reader(o);
+    if (indexed) CHECK(reader.rows_left_hint() == 200);
   }
 }
 
