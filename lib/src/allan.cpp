@@ -77,6 +77,7 @@ namespace {
 /// do not depend on the other factors swept with it or on the threads (bit for bit).
 std::vector<double> allan_sums(const PhaseSeries& series, std::span<const std::int64_t> factors,
                                unsigned threads) {
+  if (factors.empty()) return {};
   detail::PhaseStore& store = series.store();
   std::vector<double> sums(factors.size(), 0.0);
   std::vector<std::int64_t> missing, counts;
