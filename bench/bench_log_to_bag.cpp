@@ -3,8 +3,9 @@
 // uncompressed chunks of rosbag's 768 KiB: the input of bench/speed_vs_numpy.py's `analyze`
 // run on a ROS bag (issue 25: "65 M values, f32 binary or a ROS bag").
 //
-//   bench_log_to_bag IN.f32 RATE_HZ OUT.bag
+//   bench_log_to_bag IN.f32 RATE_HZ OUT.bag [--unindexed]
 //
+// --unindexed leaves the index out (index_pos 0), as a recorder that crashed does.
 // The stamps are 1.7e9 s + i / RATE_HZ (header and receive time alike).
 #include <cmath>
 #include <cstdio>
@@ -17,8 +18,9 @@
 #include "ros1_bag_writer.hpp"
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: bench_log_to_bag IN.f32 RATE_HZ OUT.bag\n");
+  const bool unindexed = argc == 5 && std::string(argv[4]) == "--unindexed";
+  if (argc != 4 && !unindexed) {
+    std::fprintf(stderr, "usage: bench_log_to_bag IN.f32 RATE_HZ OUT.bag [--unindexed]\n");
     return 2;
   }
   try {
@@ -26,7 +28,9 @@ int main(int argc, char** argv) {
     if (!(rate > 0)) throw std::runtime_error("RATE_HZ must be > 0");
     std::ifstream in(argv[1], std::ios::binary);
     if (!in) throw std::runtime_error(std::string("cannot read ") + argv[1]);
-    sigmatau::test::Ros1BagWriter writer(argv[3], {});
+    sigmatau::test::Ros1BagWriter::Options options;
+    options.indexed = !unindexed;
+    sigmatau::test::Ros1BagWriter writer(argv[3], options);
     const auto imu = writer.add_connection("/imu/data", "sensor_msgs/Imu");
     constexpr std::int64_t kStartNs = 1700000000000000000;
     float row[6];

@@ -41,9 +41,9 @@ class BagBackend {
   /// The topics in the bag with their types; message counts when the bag states them, or when
   /// `need_counts` (which may read the whole bag), else -1.
   virtual std::vector<BagTopic> topics(bool need_counts) = 0;
-  /// The topics as the bag's index or summary lists them, with the message counts it states
-  /// (-1 where it states none), without reading any message; empty when the bag has no such
-  /// list (or a backend does not read one).
+  /// The topics as the bag's index or summary lists them (or a counting scan already made),
+  /// with the message counts it states (-1 where it states none), without reading any message;
+  /// empty when there is no such list (or a backend does not read one).
   virtual std::vector<BagTopic> indexed_topics() { return {}; }
   /// Reads only `topic` from now on. false when the bag has no such topic; ParseError when its
   /// type is not sensor_msgs/Imu, naming where the bag declares it.

@@ -233,7 +233,9 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
     }
     check_cut(complete);
   } else {
-    for (const BagTopic& t : backend_->topics(false)) {
+    // The counts known without reading the messages (an index, a summary, or the scan that
+    // picking the topic made): asking topics() here would make an unindexed bag read twice.
+    for (const BagTopic& t : backend_->indexed_topics()) {
       if (t.name == topic_) stated_ = t.messages;
     }
   }

@@ -131,7 +131,8 @@ class McapFile final : public BagBackend {
   }
 
   std::vector<BagTopic> indexed_topics() override {
-    return has_summary_ ? topic_list(counts_known_) : std::vector<BagTopic>{};
+    return has_summary_ || scanned_ ? topic_list(counts_known_ || scanned_)
+                                    : std::vector<BagTopic>{};
   }
 
   bool select(const std::string& topic) override {

@@ -145,7 +145,7 @@ class Ros1Bag final : public BagBackend {
   }
 
   std::vector<BagTopic> indexed_topics() override {
-    return indexed_ ? topic_list(true) : std::vector<BagTopic>{};
+    return indexed_ || scanned_ ? topic_list(true) : std::vector<BagTopic>{};
   }
 
   bool select(const std::string& topic) override {
