@@ -120,6 +120,13 @@ void BagFile::read(std::int64_t offset, std::size_t n, char* dst, const char* wh
     truncated(offset, n, what);
   }
   delivered_ += static_cast<std::int64_t>(n);
+  // A chunk that the window already holds (read with the record headers before it) is copied
+  // from there: reading it again from the file made a bag's bytes cross the kernel twice.
+  if (offset >= window_start_ &&
+      static_cast<std::uint64_t>(offset - window_start_) + n <= window_len_) {
+    std::memcpy(dst, window_.data() + (offset - window_start_), n);
+    return;
+  }
   pread_all(offset, n, dst);
 }
 

@@ -52,7 +52,8 @@ class BagFile {
   /// `n` bytes at `offset`, valid until the next call. Throws ParseError "truncated <what> at byte
   /// offset <offset>: needs <n> bytes, the file ends at <size>" when the file is too short.
   const char* view(std::int64_t offset, std::size_t n, const char* what);
-  /// Copies `n` bytes at `offset` into `dst` (large reads bypass the window). Throws like view.
+  /// Copies `n` bytes at `offset` into `dst` (large reads bypass the window unless it holds
+  /// them). Throws like view.
   void read(std::int64_t offset, std::size_t n, char* dst, const char* what);
 
  private:
