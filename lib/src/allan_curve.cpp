@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include "allan_curve_assembly.hpp"
@@ -166,7 +167,12 @@ class FirstSteps {
     factors_.erase(std::unique(factors_.begin(), factors_.end()), factors_.end());
     if (factors_.size() > kFirstStepFactors) factors_.resize(kFirstStepFactors);
     if (beside && !factors_.empty()) {
-      pending_ = std::async(std::launch::async, [this] { return detail::acf_first_steps(series_, factors_); });
+      try {
+        pending_ = std::async(std::launch::async,
+                              [this] { return detail::acf_first_steps(series_, factors_); });
+      } catch (const std::system_error&) {
+        // no thread to be had: the pass runs when a curve first asks for it
+      }
     }
   }
 
