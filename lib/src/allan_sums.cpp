@@ -19,16 +19,14 @@
 #include "allan_sums.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <future>
 #include <span>
-#include <system_error>
 #include <vector>
 
 #include "allan_dd.hpp"
+#include "parallel_items.hpp"
 #include "sigmatau/error.hpp"
 #include "simd_clones.hpp"
 
@@ -420,29 +418,14 @@ std::vector<double> modified_sums(const PhaseSeries& series, std::span<const std
   const std::size_t groups = (m.size() + kFactorLanes - 1) / kFactorLanes;
   std::vector<DoubleDouble> piece_totals[kPieces];
   for (auto& p : piece_totals) p.resize(m.size());
-  const std::size_t tasks = kPieces * groups;
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t task = next++; task < tasks; task = next++) {
-      const std::size_t k = groups - 1 - task / kPieces;
-      const int piece = static_cast<int>(task % kPieces);
-      const std::size_t a = k * kFactorLanes;
-      const std::size_t b = std::min(m.size(), a + kFactorLanes);
-      modified_piece(phase, series.size(), m.subspan(a, b - a), counts.subspan(a, b - a), piece,
-                     std::span(piece_totals[piece]).subspan(a, b - a));
-    }
-  };
-  const std::size_t workers = std::min<std::size_t>(std::max(1u, threads), tasks);
-  std::vector<std::future<void>> others;
-  for (std::size_t w = 1; w < workers; ++w) {
-    try {
-      others.push_back(std::async(std::launch::async, work));
-    } catch (const std::system_error&) {
-      break;  // no thread to be had: this one does the rest
-    }
-  }
-  work();
-  for (auto& f : others) f.get();
+  for_each_item_parallel(kPieces * groups, std::max(1u, threads), [&](std::size_t task) {
+    const std::size_t k = groups - 1 - task / kPieces;
+    const int piece = static_cast<int>(task % kPieces);
+    const std::size_t a = k * kFactorLanes;
+    const std::size_t b = std::min(m.size(), a + kFactorLanes);
+    modified_piece(phase, series.size(), m.subspan(a, b - a), counts.subspan(a, b - a), piece,
+                   std::span(piece_totals[piece]).subspan(a, b - a));
+  });
   std::vector<double> sums(m.size(), 0.0);
   for (std::size_t t = 0; t < m.size(); ++t) {
     DoubleDouble total = piece_totals[0][t];
