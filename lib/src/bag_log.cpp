@@ -79,6 +79,25 @@ std::string topic_list(const std::vector<BagTopic>& topics) {
   return out;
 }
 
+/// The sensor_msgs/Imu topics of a listing: the one a reader without --topic reads when there
+/// is exactly one.
+std::vector<const BagTopic*> imu_topics(const std::vector<BagTopic>& topics) {
+  std::vector<const BagTopic*> imu;
+  for (const BagTopic& t : topics) {
+    if (is_imu_type(t.type)) imu.push_back(&t);
+  }
+  return imu;
+}
+
+/// The message count a listing states for topic `name`; -1 when it has no such topic or
+/// states no count.
+std::int64_t stated_messages(const std::vector<BagTopic>& topics, const std::string& name) {
+  for (const BagTopic& t : topics) {
+    if (t.name == name) return t.messages;
+  }
+  return -1;
+}
+
 std::string location(const ImuSample& s) {
   if (s.id >= 0) return "message with row id " + std::to_string(s.id);
   return "message at byte offset " + std::to_string(s.offset) +
@@ -204,10 +223,7 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
   topic_ = options.topic;
   if (topic_.empty()) {
     const std::vector<BagTopic> topics = backend_->topics(false);
-    std::vector<const BagTopic*> imu;
-    for (const BagTopic& t : topics) {
-      if (is_imu_type(t.type)) imu.push_back(&t);
-    }
+    const std::vector<const BagTopic*> imu = imu_topics(topics);
     if (imu.size() != 1) {
       check_cut(-1);  // under TruncatedPolicy::error the cut explains a missing topic first
       const BagCut& cut = backend_->cut();
@@ -227,17 +243,11 @@ BagLog::BagLog(const LogOptions& options, TimingAccumulator& timing)
                 topic_list(backend_->topics(true)));
   }
   if (backend_->cut().at_byte >= 0) {  // met by a counting scan: the counts are of the prefix
-    std::int64_t complete = -1;
-    for (const BagTopic& t : backend_->topics(false)) {
-      if (t.name == topic_) complete = t.messages;
-    }
-    check_cut(complete);
+    check_cut(stated_messages(backend_->topics(false), topic_));
   } else {
     // The counts known without reading the messages (an index, a summary, or the scan that
     // picking the topic made): asking topics() here would make an unindexed bag read twice.
-    for (const BagTopic& t : backend_->indexed_topics()) {
-      if (t.name == topic_) stated_ = t.messages;
-    }
+    stated_ = stated_messages(backend_->indexed_topics(), topic_);
   }
   timing_.set_policy(options.gaps, file_);
   timing_.start(true, TimeUnit::ns);
@@ -387,13 +397,10 @@ std::vector<BagTopic> list_bag_topics(const std::string& path) {
 
 std::int64_t indexed_bag_messages(const std::string& path, const std::string& topic) {
   const std::vector<BagTopic> listed = detail::open_bag(path)->indexed_topics();
-  const BagTopic* found = nullptr;
-  for (const BagTopic& t : listed) {
-    if (topic.empty() ? !detail::is_imu_type(t.type) : t.name != topic) continue;
-    if (found != nullptr) return -1;  // two Imu topics: the reader asks which one
-    found = &t;
-  }
-  return found != nullptr ? found->messages : -1;
+  if (!topic.empty()) return detail::stated_messages(listed, topic);
+  // Without a topic the reader takes the only Imu topic (and asks which one among several).
+  const std::vector<const BagTopic*> imu = detail::imu_topics(listed);
+  return imu.size() == 1 ? imu.front()->messages : -1;
 }
 
 }  // namespace sigmatau
